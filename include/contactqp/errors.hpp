@@ -1,0 +1,43 @@
+// Bad input, as opposed to a solver outcome (STYLE.md §4).
+//
+// Every check of user input throws InputError before any work is done. The message is one
+// line: the field path, the offending value, the rule, and a hint when there is one, e.g.
+//   material.nu = 0.5: must lie in (-1, 0.5)
+// The command-line tool prints it on stderr and exits with status 2.
+#pragma once
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace contactqp {
+
+class InputError : public std::runtime_error {
+ public:
+  // `field` is a path such as "material.nu" or a file name; `message` is the rest of the line.
+  InputError(std::string field, const std::string& message);
+
+  const std::string& field() const { return field_; }
+
+ private:
+  std::string field_;
+};
+
+namespace detail {
+template <class T>
+std::string format_value(const T& value) {
+  std::ostringstream out;
+  out.precision(12);
+  out << value;
+  return out.str();
+}
+}  // namespace detail
+
+// require(nu > -1 && nu < 0.5, "material.nu", nu, "must lie in (-1, 0.5)")
+//   throws "material.nu = 0.5: must lie in (-1, 0.5)" when the condition fails.
+template <class T>
+void require(bool condition, const std::string& field, const T& value, const std::string& rule) {
+  if (!condition) throw InputError(field, "= " + detail::format_value(value) + ": " + rule);
+}
+
+}  // namespace contactqp

@@ -1,0 +1,42 @@
+// Output files: the result JSON, the pressure profile CSV, written atomically.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "contactqp/certificate.hpp"
+#include "contactqp/post.hpp"
+
+namespace contactqp {
+
+// Throws InputError(field, ...) when `path` cannot be written: its directory is missing or
+// not writable, or the path is a directory. Call before any work, so that a run never
+// computes a result it cannot save.
+void check_output_path(const std::string& path, const std::string& field);
+
+// Writes to a temporary file beside `path`, then renames it over `path`: readers see the old
+// file or the complete new one, never a half-written one. Throws std::runtime_error on failure
+// (and removes the temporary file).
+void write_file_atomically(const std::string& path, const std::string& content);
+
+// Everything one solve produced, for the result file and the summary.
+struct RunReport {
+  const Model* model = nullptr;
+  const QuadraticProgram* qp = nullptr;
+  SolveOptions options;
+  SolveResult result;
+  Certificate certificate;
+  ContactSummary contact;
+  std::optional<HertzComparison> hertz;
+  Timings timings;                    // every phase: mesh, assemble, factorize, solve, ..., total
+  std::vector<std::string> warnings;  // also printed on stderr
+};
+
+// The result JSON (README: "Result file"). Numbers that are not finite are written as null.
+std::string result_json(const RunReport& report);
+
+// The pressure profile: s, pressure, nodal force, and Hertz's pressure when it applies.
+std::string profile_csv(const RunReport& report);
+
+}  // namespace contactqp

@@ -1,0 +1,54 @@
+// Post-processing of a solution: contact pressure, total force, contact half-width, and the
+// comparison with Hertz's analytic solution for a cylinder on a rigid plane.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "contactqp/model.hpp"
+
+namespace contactqp {
+
+struct ContactProfilePoint {
+  double s = 0;         // position along the obstacle surface (length), from the body's axis
+  double pressure = 0;  // λ_i / (w_i · thickness): force per area, compression positive
+  double force = 0;     // λ_i, the nodal contact force (for the model's thickness)
+  int node = -1;
+};
+
+struct ContactSummary {
+  std::vector<ContactProfilePoint> profile;  // every candidate, sorted by s (x ≥ 0 only with symmetry)
+  double total_force = 0;    // Σ λ_i, doubled when a symmetry plane halves the model (force)
+  double line_load = 0;      // total_force / thickness: Hertz's P (force per length)
+  // 2·sqrt(Σλ(s − s̄)² / Σλ): equals b for a Hertz profile and, unlike the last loaded node,
+  // does not jump by ±h/2 from mesh to mesh.
+  double half_width = 0;
+  double half_width_last_node = 0;  // |s − s̄| of the farthest node carrying force
+  double centre = 0;                // s̄, the centre of pressure (0 with symmetry)
+  double max_pressure = 0;
+  int contact_nodes = 0;            // candidates carrying force (λ_i > 1e-8 · max λ)
+  // Boundary nodes outside the candidate set that end up inside an obstacle: a sign that
+  // contact.max_gap was too small.
+  int penetrating_non_candidates = 0;
+  double max_non_candidate_penetration = 0;  // (length)
+};
+
+ContactSummary summarize_contact(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
+                                 const Eigen::VectorXd& lambda);
+
+struct HertzComparison {
+  double effective_modulus = 0;   // E* = E/(1 − ν²) in plane strain, E in plane stress
+  double half_width = 0;          // b = sqrt(4 P R / (π E*)) for the computed line load P
+  double max_pressure = 0;        // p0 = 2P / (π b)
+  double error_half_width = 0;    // (b_computed − b) / b
+  double error_max_pressure = 0;  // (p_max − p0) / p0
+  double error_l2 = 0;            // ‖p_h − p_Hertz‖_L2 / ‖p_Hertz‖_L2 over the contact zone
+};
+
+// Hertz's solution applies to a half disc on one plane obstacle; otherwise nullopt.
+std::optional<HertzComparison> compare_with_hertz(const Model& model, const ContactSummary& contact);
+
+// Hertz's pressure at distance x from the centre of contact: p0 sqrt(1 − x²/b²), 0 outside.
+double hertz_pressure(const HertzComparison& hertz, double x);
+
+}  // namespace contactqp

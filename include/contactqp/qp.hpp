@@ -1,0 +1,99 @@
+// The one quadratic program every backend solves, and the vocabulary every backend shares.
+//
+//     minimise  J(u) = ½ uᵀ K u − fᵀ u     subject to   B u ≤ g
+//
+// Sign conventions (ARCHITECTURE.md): row i of B is −nᵀ at the displacement DOFs of one
+// candidate contact node, g_i = (x_i − p)·n is its initial gap (≥ 0 when not penetrating), and
+// the multiplier λ_i ≥ 0 is the nodal contact force, compression positive.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "contactqp/timer.hpp"
+
+namespace contactqp {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;  // column-major, int indices
+using Eigen::VectorXd;
+
+class CholeskyFactor;
+
+// Where a constraint row came from: metadata for post-processing; backends ignore it.
+struct ConstraintRow {
+  int node = -1;      // mesh node whose normal displacement the row bounds
+  int obstacle = -1;  // index of the obstacle in the scene
+};
+
+struct QuadraticProgram {
+  SparseMatrix K;                   // n × n stiffness, symmetric positive definite, both triangles stored
+  VectorXd f;                       // n: load vector (prescribed displacements already moved here)
+  SparseMatrix B;                   // m × n: contact rows, −nᵀ at the DOFs of one node each
+  VectorXd g;                       // m: initial gaps along the obstacle normal, ≥ 0 unless penetrating
+  std::vector<ConstraintRow> rows;  // m entries, or empty when the QP has no mesh behind it
+
+  int n_dofs() const { return static_cast<int>(K.rows()); }
+  int n_constraints() const { return static_cast<int>(B.rows()); }
+};
+
+// Throws InputError when the shapes disagree ("B has 412 columns, K has 410 rows") or an
+// entry is not finite. Cheap: O(nnz).
+void validate(const QuadraticProgram& qp);
+
+// J(u) = ½ uᵀKu − fᵀu.
+double primal_objective(const QuadraticProgram& qp, const VectorXd& u);
+
+enum class Backend {
+  Uzawa,  // dual projected gradient with a fixed step ρ (the reference paper's method)
+};
+
+enum class Status {
+  Converged,       // the stopping rule of the backend was met at the requested tol
+  MaxIterations,   // stopped at max_iterations; u and λ are the last (finite) iterate
+  Diverged,        // the iteration was expanding (e.g. Uzawa with ρ > ρ_max); stopped early
+  NumericalError,  // a factorisation or the backend's library failed; see the message
+};
+
+std::string to_string(Backend backend);
+std::string to_string(Status status);
+// "uzawa" -> Backend::Uzawa. Unknown names throw InputError(field, "... valid: uzawa, ...").
+Backend parse_backend(const std::string& name, const std::string& field = "backend");
+std::vector<Backend> all_backends();  // every enum value, in declaration order
+
+struct UzawaOptions {
+  // How the step ρ is chosen. Auto estimates the spectrum of S = B K⁻¹ Bᵀ (one solve per
+  // estimator step) and takes a safe step; Absolute takes `rho` in the QP's own units
+  // (force per length); FractionOfMax takes `rho` as a fraction of ρ_max = 2/λ_max(S).
+  enum class RhoRule { Auto, Absolute, FractionOfMax };
+  RhoRule rho_rule = RhoRule::Auto;
+  double rho = 0.0;
+};
+
+struct SolveOptions {
+  Backend backend = Backend::Uzawa;
+  double tol = 1e-8;         // relative, dimensionless: each backend's stopping rule uses the scales of certificate.hpp
+  int max_iterations = 10000;
+  bool verbose = false;      // third-party banners and per-iteration logs stay silent unless set
+  bool scale = true;         // solve an internally scaled copy, so E and length units do not matter
+  UzawaOptions uzawa;
+  std::map<std::string, std::string> backend_options;  // --backend-option key=value, passed through
+  // A factorisation of this QP's K to reuse (backends that use CHOLMOD then skip their own).
+  std::shared_ptr<const CholeskyFactor> K_factor;
+};
+
+struct SolveResult {
+  Status status = Status::NumericalError;          // pessimistic until a backend says otherwise
+  std::string message = "solve() was not called";  // why it stopped, one sentence
+  VectorXd u, lambda;                              // λ ≥ 0, compression positive; always finite
+  int iterations = 0;
+  Timings timings;                                 // seconds per phase ("factorize", "solve", ...)
+  std::map<std::string, double> diagnostics;       // named extras: "rho", "rho_max", ...
+  // The factorisation of K the backend used, if any: reuse it for certify() or further solves.
+  std::shared_ptr<const CholeskyFactor> K_factor;
+};
+
+}  // namespace contactqp

@@ -1,0 +1,20 @@
+// solve(qp, options): hand the QP to the backend named by options.backend.
+//
+// Implemented by the registry in solvers/; the backends see only the QuadraticProgram.
+#pragma once
+
+#include <vector>
+
+#include "contactqp/qp.hpp"
+
+namespace contactqp {
+
+// Validates the QP and the options (InputError on bad input), optionally scales the problem
+// (SolveOptions::scale), runs the backend, and returns its result in the caller's units.
+// The QP is left untouched. u and λ in the result are always finite.
+SolveResult solve(const QuadraticProgram& qp, const SolveOptions& options);
+
+bool backend_available(Backend backend);  // false when its library was not built in
+std::vector<Backend> available_backends();
+
+}  // namespace contactqp

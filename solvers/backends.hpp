@@ -1,0 +1,22 @@
+// Entry points of the backends, one per file in solvers/, dispatched by registry.cpp.
+// Each receives a validated (and, unless disabled, scaled) QP and returns a SolveResult
+// whose u and λ are finite; the registry checks that once more.
+#pragma once
+
+#include <memory>
+
+#include "contactqp/cholesky.hpp"
+#include "contactqp/qp.hpp"
+
+namespace contactqp::detail {
+
+SolveResult solve_uzawa(const QuadraticProgram& qp, const SolveOptions& options);
+
+// The factorisation of qp.K a CHOLMOD-based backend works with: options.K_factor when the
+// caller supplied one, otherwise a fresh one whose analyse + factorise time is recorded in
+// timings as "factorize". Null with `message` set when K is not positive definite.
+std::shared_ptr<const CholeskyFactor> factor_of_K(const QuadraticProgram& qp,
+                                                  const SolveOptions& options, Timings& timings,
+                                                  std::string& message);
+
+}  // namespace contactqp::detail

@@ -1,0 +1,95 @@
+// The registry: maps the Backend enum to an implementation, and does what every backend
+// shares — input validation, internal scaling, and the final guard against non-finite output.
+#include <cmath>
+
+#include "backends.hpp"
+#include "contactqp/errors.hpp"
+#include "contactqp/solve.hpp"
+#include "scaling.hpp"
+
+namespace contactqp {
+namespace detail {
+
+std::shared_ptr<const CholeskyFactor> factor_of_K(const QuadraticProgram& qp,
+                                                  const SolveOptions& options, Timings& timings,
+                                                  std::string& message) {
+  if (options.K_factor) return options.K_factor;
+  Stopwatch clock;
+  auto factor = std::make_shared<const CholeskyFactor>(qp.K);
+  timings.add("factorize", clock.seconds());
+  if (!factor->ok()) {
+    message = "the stiffness matrix K could not be factorised: " + factor->message() +
+              " (is the body restrained against rigid motion?)";
+    return nullptr;
+  }
+  return factor;
+}
+
+namespace {
+
+SolveResult dispatch(const QuadraticProgram& qp, const SolveOptions& options) {
+  switch (options.backend) {
+    case Backend::Uzawa: return solve_uzawa(qp, options);
+  }
+  throw InputError("backend", "= " + std::to_string(static_cast<int>(options.backend)) + ": not a backend");
+}
+
+void validate_options(const SolveOptions& options) {
+  require(options.tol > 0 && options.tol < 1, "tol", options.tol, "must lie in (0, 1)");
+  require(options.max_iterations > 0, "max_iterations", options.max_iterations, "must be positive");
+  const UzawaOptions& uzawa = options.uzawa;
+  if (uzawa.rho_rule != UzawaOptions::RhoRule::Auto)
+    require(uzawa.rho > 0 && std::isfinite(uzawa.rho), "rho", uzawa.rho, "must be a positive number");
+  require(backend_available(options.backend), "backend", to_string(options.backend),
+          "was not built into this copy of contactqp");
+}
+
+}  // namespace
+}  // namespace detail
+
+bool backend_available(Backend backend) {
+  switch (backend) {
+    case Backend::Uzawa: return true;
+  }
+  return false;
+}
+
+std::vector<Backend> available_backends() {
+  std::vector<Backend> list;
+  for (Backend backend : all_backends())
+    if (backend_available(backend)) list.push_back(backend);
+  return list;
+}
+
+SolveResult solve(const QuadraticProgram& qp, const SolveOptions& options) {
+  validate(qp);
+  detail::validate_options(options);
+  Stopwatch clock;
+
+  SolveResult result;
+  if (options.scale) {
+    const detail::QpScaling scaling = detail::choose_scaling(qp);
+    result = detail::dispatch(detail::scaled_qp(qp, scaling), detail::scaled_options(options, scaling));
+    detail::unscale_result(result, scaling);
+  } else {
+    result = detail::dispatch(qp, options);
+  }
+
+  // The final guard: no NaN or Inf ever leaves solve().
+  if (result.u.size() != qp.n_dofs() || !result.u.allFinite() ||
+      result.lambda.size() != qp.n_constraints() || !result.lambda.allFinite()) {
+    if (result.status == Status::Converged) {
+      result.status = Status::NumericalError;
+      result.message = "the backend returned a solution that is not finite";
+    }
+    result.u = VectorXd::Zero(qp.n_dofs());
+    result.lambda = VectorXd::Zero(qp.n_constraints());
+  }
+  // A diagnostic that is not finite (ρ_max with no constraints) is absent, not Inf.
+  for (auto it = result.diagnostics.begin(); it != result.diagnostics.end();)
+    it = std::isfinite(it->second) ? std::next(it) : result.diagnostics.erase(it);
+  result.timings.add("total", clock.seconds());
+  return result;
+}
+
+}  // namespace contactqp

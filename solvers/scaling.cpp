@@ -1,0 +1,63 @@
+#include "scaling.hpp"
+
+#include <cmath>
+
+#include "contactqp/cholesky.hpp"
+
+namespace contactqp::detail {
+namespace {
+
+double inf_norm(const VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
+
+// Diagnostics that carry units: steps ρ scale like κ, eigenvalues of S = B K⁻¹ Bᵀ like 1/κ.
+const char* const kStepDiagnostics[] = {"rho", "rho_max", "rho_opt"};
+const char* const kEigenvalueDiagnostics[] = {"lambda_max_S", "lambda_min_S"};
+
+}  // namespace
+
+QpScaling choose_scaling(const QuadraticProgram& qp) {
+  QpScaling scaling;
+  const double kappa = qp.K.rows() ? qp.K.diagonal().cwiseAbs().maxCoeff() : 0.0;
+  if (kappa > 0 && std::isfinite(kappa)) scaling.stiffness = kappa;
+  const double from_load = inf_norm(qp.f) / scaling.stiffness;
+  const double from_gap = inf_norm(qp.g);
+  if (from_load > 0 && std::isfinite(from_load))
+    scaling.displacement = from_load;
+  else if (from_gap > 0 && std::isfinite(from_gap))
+    scaling.displacement = from_gap;
+  return scaling;
+}
+
+QuadraticProgram scaled_qp(const QuadraticProgram& qp, const QpScaling& scaling) {
+  QuadraticProgram scaled;
+  scaled.K = qp.K / scaling.stiffness;
+  scaled.f = qp.f / (scaling.stiffness * scaling.displacement);
+  scaled.B = qp.B;
+  scaled.g = qp.g / scaling.displacement;
+  scaled.rows = qp.rows;
+  return scaled;
+}
+
+SolveOptions scaled_options(const SolveOptions& options, const QpScaling& scaling) {
+  SolveOptions scaled = options;
+  if (options.uzawa.rho_rule == UzawaOptions::RhoRule::Absolute)
+    scaled.uzawa.rho = options.uzawa.rho / scaling.stiffness;
+  if (options.K_factor) scaled.K_factor = options.K_factor->scaled(1.0 / scaling.stiffness);
+  return scaled;
+}
+
+void unscale_result(SolveResult& result, const QpScaling& scaling) {
+  result.u *= scaling.displacement;
+  result.lambda *= scaling.stiffness * scaling.displacement;
+  for (const char* key : kStepDiagnostics) {
+    auto it = result.diagnostics.find(key);
+    if (it != result.diagnostics.end()) it->second *= scaling.stiffness;
+  }
+  for (const char* key : kEigenvalueDiagnostics) {
+    auto it = result.diagnostics.find(key);
+    if (it != result.diagnostics.end()) it->second /= scaling.stiffness;
+  }
+  if (result.K_factor) result.K_factor = result.K_factor->scaled(scaling.stiffness);
+}
+
+}  // namespace contactqp::detail

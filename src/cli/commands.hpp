@@ -1,0 +1,37 @@
+// The subcommands of the contactqp tool. Each returns the process exit status:
+// 0 converged, 1 any other solver outcome, 2 bad input (thrown as InputError, caught in main).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "contactqp/io.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace contactqp::cli {
+
+// Options shared by the commands that solve a scene.
+struct SolveArguments {
+  std::string scene_path;
+  std::string backend;  // empty: the scene's solver.backend
+  double tol = 0;
+  bool tol_given = false;  // otherwise the scene's solver.tol
+  std::string rho;         // empty: the scene's
+  int max_iterations = 0;
+  bool max_iterations_given = false;
+  std::string json_path, csv_path;
+  long long max_elements = BuildOptions{}.max_elements;
+  bool verbose = false;
+  std::vector<std::string> backend_options;  // key=value
+};
+
+void add_solve_command(CLI::App& app, int& exit_status);
+
+// The human summary printed on stdout after a solve.
+std::string summary_table(const RunReport& report);
+
+}  // namespace contactqp::cli

@@ -1,0 +1,52 @@
+// contactqp: the command-line tool. Thin: parses the command line and runs a subcommand.
+// Only main() catches everything; bad input exits 2 with one line on stderr.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "commands.hpp"
+#include "contactqp/errors.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"contactqp: frictionless contact of elastic bodies with rigid obstacles, as one QP"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "contactqp 0.1.0");
+  int exit_status = 0;
+  contactqp::cli::add_solve_command(app, exit_status);
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string valid;
+    bool known = false;
+    for (const CLI::App* command : app.get_subcommands({})) {
+      valid += (valid.empty() ? "" : ", ") + command->get_name();
+      known = known || command->get_name() == argv[1];
+    }
+    if (!known) {
+      std::cerr << "contactqp: error: \"" << argv[1] << "\" is not a command; valid: " << valid << " (see --help)\n";
+      return 2;
+    }
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& help) {
+    return app.exit(help);
+  } catch (const CLI::CallForAllHelp& help) {
+    return app.exit(help);
+  } catch (const CLI::CallForVersion& version) {
+    return app.exit(version);
+  } catch (const CLI::ParseError& error) {
+    // One line, like every other bad input.
+    std::string text = error.what();
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    std::cerr << "contactqp: error: " << text << " (see --help)\n";
+    return 2;
+  } catch (const contactqp::InputError& error) {
+    std::cerr << "contactqp: error: " << error.what() << "\n";
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "contactqp: error: out of memory; try a coarser mesh\n";
+    return 1;
+  } catch (const std::exception& error) {
+    std::cerr << "contactqp: error: " << error.what() << "\n";
+    return 1;
+  }
+  return exit_status;
+}

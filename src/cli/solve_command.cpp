@@ -1,0 +1,107 @@
+// contactqp solve SCENE.json: build, solve, certify, post-process, report.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "commands.hpp"
+#include "contactqp/certificate.hpp"
+#include "contactqp/cholesky.hpp"
+#include "contactqp/errors.hpp"
+#include "contactqp/solve.hpp"
+
+namespace contactqp::cli {
+namespace {
+
+void apply_overrides(const SolveArguments& arguments, SolveOptions& options) {
+  if (!arguments.backend.empty()) options.backend = parse_backend(arguments.backend, "--backend");
+  if (arguments.tol_given) {
+    require(arguments.tol > 0 && arguments.tol < 1, "--tol", arguments.tol, "must lie in (0, 1)");
+    options.tol = arguments.tol;
+  }
+  if (!arguments.rho.empty()) options.uzawa = parse_rho(arguments.rho, "--rho");
+  if (arguments.max_iterations_given) {
+    require(arguments.max_iterations > 0, "--max-iterations", arguments.max_iterations, "must be positive");
+    options.max_iterations = arguments.max_iterations;
+  }
+  options.verbose = arguments.verbose;
+  for (const std::string& pair : arguments.backend_options) {
+    const auto equals = pair.find('=');
+    if (equals == std::string::npos || equals == 0)
+      throw InputError("--backend-option", "= " + pair + ": must be key=value");
+    options.backend_options[pair.substr(0, equals)] = pair.substr(equals + 1);
+  }
+}
+
+int run_solve(const SolveArguments& arguments) {
+  Stopwatch total;
+  // Every check of the input first: a run never computes what it cannot save.
+  if (!arguments.json_path.empty()) check_output_path(arguments.json_path, "--json");
+  if (!arguments.csv_path.empty()) check_output_path(arguments.csv_path, "--csv");
+  require(arguments.max_elements > 0, "--max-elements", arguments.max_elements, "must be positive");
+  Scene scene = load_scene(arguments.scene_path);
+  apply_overrides(arguments, scene.solver);
+
+  BuildOptions build;
+  build.max_elements = arguments.max_elements;
+  Model model = build_model(scene, build);
+  QuadraticProgram qp = assemble_qp(model);
+
+  RunReport report;
+  report.model = &model;
+  report.qp = &qp;
+  report.options = scene.solver;
+  report.result = solve(qp, scene.solver);
+
+  Stopwatch clock;
+  report.certificate = certify(qp, report.result.u, report.result.lambda, report.result.K_factor.get());
+  report.timings.merge(model.timings);
+  report.timings.merge(report.result.timings);
+  report.timings.add("certify", clock.seconds());
+  clock.restart();
+  report.contact = summarize_contact(model, qp, report.result.u, report.result.lambda);
+  report.hertz = compare_with_hertz(model, report.contact);
+  report.timings.add("postprocess", clock.seconds());
+
+  report.warnings = model.warnings;
+  if (report.contact.penetrating_non_candidates > 0)
+    report.warnings.push_back(std::to_string(report.contact.penetrating_non_candidates) +
+                              " boundary nodes outside the candidate set penetrate an obstacle (by up to " +
+                              detail::format_value(report.contact.max_non_candidate_penetration) +
+                              "); raise contact.max_gap");
+  // "total" is the whole run: the backend's own total stays under its name in the registry.
+  Timings timings;
+  for (const auto& [phase, seconds] : report.timings.phases())
+    if (phase != "total") timings.add(phase, seconds);
+  timings.add("total", total.seconds());
+  report.timings = timings;
+
+  for (const std::string& warning : report.warnings) std::cerr << "contactqp: warning: " << warning << "\n";
+  std::cout << summary_table(report);
+  if (!arguments.json_path.empty()) write_file_atomically(arguments.json_path, result_json(report));
+  if (!arguments.csv_path.empty()) write_file_atomically(arguments.csv_path, profile_csv(report));
+  return report.result.status == Status::Converged ? 0 : 1;
+}
+
+}  // namespace
+
+void add_solve_command(CLI::App& app, int& exit_status) {
+  auto arguments = std::make_shared<SolveArguments>();
+  CLI::App* command = app.add_subcommand("solve", "Solve one scene and report contact pressure, certificate and Hertz errors");
+  command->add_option("scene", arguments->scene_path, "Scene file (JSON)")->required();
+  command->add_option("--backend", arguments->backend, "Optimisation backend (overrides solver.backend)");
+  CLI::Option* tol = command->add_option("--tol", arguments->tol, "Relative tolerance of the stopping rule (default 1e-8)");
+  command->add_option("--rho", arguments->rho, "Uzawa step: auto, a number, or a fraction of rho_max like 0.5x");
+  CLI::Option* max_iterations =
+      command->add_option("--max-iterations", arguments->max_iterations, "Iteration limit (default 10000)");
+  command->add_option("--json", arguments->json_path, "Write the result JSON here");
+  command->add_option("--csv", arguments->csv_path, "Write the contact pressure profile CSV here");
+  command->add_option("--max-elements", arguments->max_elements, "Refuse meshes with more triangles (default 4000000)");
+  command->add_option("--backend-option", arguments->backend_options, "key=value passed to the backend (repeatable)");
+  command->add_flag("--verbose", arguments->verbose, "Let the backend print its log");
+  command->callback([arguments, tol, max_iterations, &exit_status] {
+    arguments->tol_given = tol->count() > 0;
+    arguments->max_iterations_given = max_iterations->count() > 0;
+    exit_status = run_solve(*arguments);
+  });
+}
+
+}  // namespace contactqp::cli

@@ -1,0 +1,68 @@
+// The human summary of one solve: what was solved, how it ended, the certificate, the
+// contact result against Hertz, and where the time went.
+#include <cstdarg>
+#include <cstdio>
+#include <string>
+
+#include "commands.hpp"
+
+namespace contactqp::cli {
+namespace {
+
+std::string format(const char* pattern, ...) __attribute__((format(printf, 1, 2)));
+std::string format(const char* pattern, ...) {
+  char buffer[512];
+  va_list args;
+  va_start(args, pattern);
+  std::vsnprintf(buffer, sizeof buffer, pattern, args);
+  va_end(args);
+  return buffer;
+}
+
+}  // namespace
+
+std::string summary_table(const RunReport& report) {
+  const Model& model = *report.model;
+  const Scene& scene = model.scene;
+  const SolveResult& result = report.result;
+  const Certificate& c = report.certificate;
+  std::string out;
+  out += format("contactqp  %s\n", scene.source.c_str());
+  out += format("  model        %s, %s R = %g%s, E = %g, nu = %g\n", to_string(scene.model).c_str(),
+                scene.body.shape.c_str(), scene.body.radius, scene.body.symmetry ? " (half, symmetric)" : "",
+                scene.material.E, scene.material.nu);
+  out += format("  mesh         %d nodes, %d triangles (order %d), %d DOFs, %d contact candidates (gap <= %g)\n",
+                model.mesh.n_nodes(), model.mesh.n_elements(), model.mesh.order, report.qp->n_dofs(),
+                report.qp->n_constraints(), model.max_gap);
+  std::string rho;
+  auto it = result.diagnostics.find("rho");
+  if (it != result.diagnostics.end()) {
+    rho = format(", rho = %.4g", it->second);
+    auto max = result.diagnostics.find("rho_max");
+    if (max != result.diagnostics.end()) rho += format(" (%.3g rho_max)", it->second / max->second);
+  }
+  out += format("  backend      %s%s, tol %g\n", to_string(report.options.backend).c_str(), rho.c_str(), report.options.tol);
+  out += format("  status       %s after %d iterations: %s\n", to_string(result.status).c_str(), result.iterations,
+                result.message.c_str());
+  out += format("  certificate  KKT stationarity %.2e, primal %.2e, dual %.2e, complementarity %.2e\n", c.stationarity,
+                c.primal_feasibility, c.dual_feasibility, c.complementarity);
+  if (c.dual_available)
+    out += format("               J = %.10g, theta = %.10g, gap = %.2e (relative %.2e)\n", c.objective, c.dual_objective,
+                  c.duality_gap, c.relative_gap);
+  const ContactSummary& contact = report.contact;
+  out += format("  contact      force P = %.6g, half-width b = %.6g (last node %.6g), max pressure p0 = %.6g, %d nodes\n",
+                contact.total_force, contact.half_width, contact.half_width_last_node, contact.max_pressure,
+                contact.contact_nodes);
+  if (report.hertz) {
+    const HertzComparison& h = *report.hertz;
+    out += format("  hertz        b = %.6g (error %+.2f%%), p0 = %.6g (error %+.2f%%), L2 pressure error %.2f%%\n",
+                  h.half_width, 100 * h.error_half_width, h.max_pressure, 100 * h.error_max_pressure, 100 * h.error_l2);
+  }
+  std::string times;
+  for (const auto& [phase, seconds] : report.timings.phases())
+    if (phase != "total") times += format("%s %.3f, ", phase.c_str(), seconds);
+  out += format("  time [s]     %stotal %.3f\n", times.c_str(), report.timings.get("total"));
+  return out;
+}
+
+}  // namespace contactqp::cli

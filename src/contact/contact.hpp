@@ -1,0 +1,41 @@
+// Contact: obstacle geometry, candidate selection and the rows of B u ≤ g.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "contactqp/model.hpp"
+
+namespace contactqp::detail {
+
+// A point's initial gap to an obstacle, measured along the obstacle normal at the closest
+// point, and that normal (unit, from the obstacle towards the body).
+struct ObstacleProjection {
+  double gap = 0;
+  Eigen::Vector2d normal = Eigen::Vector2d::UnitY();
+};
+ObstacleProjection project(const ObstacleSpec& obstacle, const Eigen::Vector2d& x);
+
+// Outward unit normal of a boundary at each of its nodes (average of its edges' normals),
+// and ∫ N_i ds (the node's tributary length) — keyed by node index.
+struct BoundaryNodeGeometry {
+  std::vector<int> nodes;
+  std::vector<Eigen::Vector2d> normals;
+  std::vector<double> tributary;
+};
+BoundaryNodeGeometry boundary_geometry(const Mesh& mesh, const std::string& boundary);
+
+// Nodes of the contact boundary that face an obstacle and whose initial gap is at most
+// `max_gap`: one candidate per (node, obstacle).
+std::vector<Candidate> select_candidates(const Mesh& mesh, const std::vector<ObstacleSpec>& obstacles,
+                                         const std::string& boundary, double max_gap);
+
+// Drops candidates with no free DOF along the obstacle normal (their position is prescribed):
+// they add no unknown. InputError when such a prescribed position penetrates the obstacle.
+void remove_prescribed_candidates(Model& model);
+
+// One row of B and entry of g per candidate, in candidate order: −nᵀ u_i ≤ g_i, with the
+// prescribed components of u_i moved into g.
+void add_contact_rows(const Model& model, QuadraticProgram& qp);
+
+}  // namespace contactqp::detail

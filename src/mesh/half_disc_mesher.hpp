@@ -1,0 +1,29 @@
+// The half-disc body of Hertz's problem, meshed by Gmsh with triangles graded from a fine
+// size along the candidate contact arc to a coarse size far from it.
+#pragma once
+
+#include "contactqp/mesh.hpp"
+
+namespace contactqp::detail {
+
+// The body is the lower half of the disc of radius R centred at (0, R). A point of its arc is
+// P(φ) = (R sin φ, R − R cos φ), φ ∈ [−π/2, π/2] (or [0, π/2] with symmetry); φ = 0 is the
+// lowest point.
+struct HalfDiscMeshRequest {
+  double radius = 1;
+  bool symmetry = false;
+  double size = 0.1;           // far-field element size (length)
+  double contact_size = 0.01;  // element size along the fine arc (length)
+  double grading = 0.25;       // size growth per unit distance from the fine arc
+  int order = 1;
+  double fine_from = 0, fine_to = 0;  // the fine arc, as angles φ; equal for a single point
+};
+
+// Boundaries of the result: "arc", "top", and "symmetry" (x = 0) when symmetric.
+Mesh mesh_half_disc(const HalfDiscMeshRequest& request);
+
+// The number of triangles the request will give, within a factor of about 1.5, computed
+// without meshing (so that an oversized request can be refused before it takes the memory).
+double estimate_half_disc_triangles(const HalfDiscMeshRequest& request);
+
+}  // namespace contactqp::detail

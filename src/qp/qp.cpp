@@ -1,0 +1,85 @@
+#include "contactqp/qp.hpp"
+
+#include <cmath>
+#include <utility>
+
+#include "contactqp/errors.hpp"
+
+namespace contactqp {
+namespace {
+
+// The one name table of the backends: the CLI, the scenes and the JSON use these names.
+const std::pair<Backend, const char*> kBackendNames[] = {
+    {Backend::Uzawa, "uzawa"},
+};
+
+bool all_finite(const SparseMatrix& A) {
+  for (int k = 0; k < A.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(A, k); it; ++it)
+      if (!std::isfinite(it.value())) return false;
+  return true;
+}
+
+std::string shape(const SparseMatrix& A) {
+  return std::to_string(A.rows()) + " × " + std::to_string(A.cols());
+}
+
+}  // namespace
+
+std::string to_string(Backend backend) {
+  for (const auto& [value, name] : kBackendNames)
+    if (value == backend) return name;
+  return "unknown";
+}
+
+std::vector<Backend> all_backends() {
+  std::vector<Backend> list;
+  for (const auto& entry : kBackendNames) list.push_back(entry.first);
+  return list;
+}
+
+Backend parse_backend(const std::string& name, const std::string& field) {
+  std::string valid;
+  for (const auto& [value, known] : kBackendNames) {
+    if (name == known) return value;
+    valid += (valid.empty() ? "" : ", ") + std::string(known);
+  }
+  throw InputError(field, "= \"" + name + "\": unknown backend; valid: " + valid);
+}
+
+std::string to_string(Status status) {
+  switch (status) {
+    case Status::Converged: return "converged";
+    case Status::MaxIterations: return "max_iterations";
+    case Status::Diverged: return "diverged";
+    case Status::NumericalError: return "numerical_error";
+  }
+  return "unknown";
+}
+
+void validate(const QuadraticProgram& qp) {
+  const long n = qp.K.rows();
+  if (qp.K.cols() != n) throw InputError("qp.K", "is " + shape(qp.K) + ": must be square");
+  if (qp.f.size() != n)
+    throw InputError("qp.f", "has " + std::to_string(qp.f.size()) + " entries, K has " +
+                                 std::to_string(n) + " rows");
+  if (qp.B.cols() != n)
+    throw InputError("qp.B", "has " + std::to_string(qp.B.cols()) + " columns, K has " +
+                                 std::to_string(n) + " rows");
+  if (qp.g.size() != qp.B.rows())
+    throw InputError("qp.g", "has " + std::to_string(qp.g.size()) + " entries, B has " +
+                                 std::to_string(qp.B.rows()) + " rows");
+  if (!qp.rows.empty() && static_cast<long>(qp.rows.size()) != qp.B.rows())
+    throw InputError("qp.rows", "has " + std::to_string(qp.rows.size()) + " entries, B has " +
+                                    std::to_string(qp.B.rows()) + " rows");
+  if (!all_finite(qp.K)) throw InputError("qp.K", "has an entry that is not finite");
+  if (!all_finite(qp.B)) throw InputError("qp.B", "has an entry that is not finite");
+  if (!qp.f.allFinite()) throw InputError("qp.f", "has an entry that is not finite");
+  if (!qp.g.allFinite()) throw InputError("qp.g", "has an entry that is not finite");
+}
+
+double primal_objective(const QuadraticProgram& qp, const VectorXd& u) {
+  return 0.5 * u.dot(qp.K * u) - qp.f.dot(u);
+}
+
+}  // namespace contactqp

@@ -1,0 +1,52 @@
+// Strict reading of a JSON object: every key must be consumed, every value must have the
+// expected type; errors name the full field path ("body.mesh.size") and the value.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace contactqp::detail {
+
+class JsonObject {
+ public:
+  // `path` is the field path of this object ("" for the document root).
+  JsonObject(const nlohmann::json& value, std::string path);
+
+  bool has(const std::string& key) const;
+  std::string path_of(const std::string& key) const;
+
+  double number(const std::string& key);
+  std::optional<double> optional_number(const std::string& key);
+  int integer(const std::string& key);
+  std::optional<int> optional_integer(const std::string& key);
+  std::string string(const std::string& key);
+  std::optional<std::string> optional_string(const std::string& key);
+  std::optional<bool> optional_boolean(const std::string& key);
+  const nlohmann::json& value(const std::string& key);  // any type; marks the key as read
+  JsonObject object(const std::string& key);
+
+  // Throws on the first key that was never read, suggesting the nearest key this object
+  // knows (every key asked for, present or not, plus `also_valid`).
+  void finish(const std::vector<std::string>& also_valid = {}) const;
+
+ private:
+  const nlohmann::json& required(const std::string& key);
+  const nlohmann::json& json_;
+  std::string path_;
+  std::set<std::string> read_;
+  mutable std::set<std::string> known_;  // every key asked for: the valid keys of this object
+};
+
+// A one-line rendering of a JSON value for error messages (long values are shortened).
+std::string describe(const nlohmann::json& value);
+
+// A JSON number as double, or InputError naming `path` when it is not a finite number.
+double as_number(const nlohmann::json& value, const std::string& path);
+
+// The valid word closest to `word` by edit distance, or "" when none is close.
+std::string nearest(const std::string& word, const std::vector<std::string>& valid);
+
+}  // namespace contactqp::detail

@@ -1,0 +1,147 @@
+#include "test_support.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+
+namespace contactqp::testing {
+
+QuadraticProgram make_qp(const Eigen::MatrixXd& K, const Eigen::VectorXd& f, const Eigen::MatrixXd& B,
+                         const Eigen::VectorXd& g) {
+  QuadraticProgram qp;
+  qp.K = K.sparseView();
+  qp.f = f;
+  qp.B = B.sparseView();
+  qp.g = g;
+  return qp;
+}
+
+ExactSolution solve_by_enumeration(const QuadraticProgram& qp) {
+  const int n = qp.n_dofs(), m = qp.n_constraints();
+  if (m > 12) throw std::invalid_argument("solve_by_enumeration: m > 12");
+  const Eigen::MatrixXd K(qp.K), B(qp.B);
+  std::optional<ExactSolution> best;
+  double best_objective = 0;
+  for (unsigned mask = 0; mask < (1u << m); ++mask) {
+    std::vector<int> active;
+    for (int i = 0; i < m; ++i)
+      if (mask & (1u << i)) active.push_back(i);
+    const int a = static_cast<int>(active.size());
+    // [K  B_Aᵀ; B_A 0] [u; λ_A] = [f; g_A]
+    Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(n + a, n + a);
+    Eigen::VectorXd rhs(n + a);
+    kkt.topLeftCorner(n, n) = K;
+    rhs.head(n) = qp.f;
+    for (int k = 0; k < a; ++k) {
+      kkt.block(0, n + k, n, 1) = B.row(active[k]).transpose();
+      kkt.block(n + k, 0, 1, n) = B.row(active[k]);
+      rhs[n + k] = qp.g[active[k]];
+    }
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(kkt);
+    if (lu.rank() < n + a) continue;  // dependent active rows: another set covers this point
+    const Eigen::VectorXd z = lu.solve(rhs);
+    ExactSolution candidate{z.head(n), Eigen::VectorXd::Zero(m)};
+    for (int k = 0; k < a; ++k) candidate.lambda[active[k]] = z[n + k];
+    const double scale = 1e-10 * (1 + qp.g.cwiseAbs().maxCoeff() + candidate.u.cwiseAbs().maxCoeff());
+    if ((B * candidate.u - qp.g).maxCoeff() > scale) continue;
+    if (candidate.lambda.size() && candidate.lambda.minCoeff() < -1e-10 * (1 + candidate.lambda.cwiseAbs().maxCoeff())) continue;
+    const double objective = 0.5 * candidate.u.dot(K * candidate.u) - qp.f.dot(candidate.u);
+    if (!best || objective < best_objective) {
+      best = candidate;
+      best_objective = objective;
+    }
+  }
+  if (!best) throw std::runtime_error("solve_by_enumeration: no KKT point (infeasible QP?)");
+  best->lambda = best->lambda.cwiseMax(0.0);
+  return *best;
+}
+
+QuadraticProgram random_qp(int n, int m, unsigned seed) {
+  std::mt19937 random(seed);
+  std::normal_distribution<double> normal;
+  Eigen::MatrixXd A(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) A(i, j) = normal(random);
+  const Eigen::MatrixXd K = A * A.transpose() + 0.5 * n * Eigen::MatrixXd::Identity(n, n);
+  Eigen::VectorXd f(n);
+  for (int i = 0; i < n; ++i) f[i] = normal(random);
+  Eigen::MatrixXd B(m, n);
+  for (int i = 0; i < m; ++i) {
+    for (int j = 0; j < n; ++j) B(i, j) = normal(random);
+    B.row(i).normalize();
+  }
+  // Gaps around the unconstrained optimum's B u: some rows end up active, some not.
+  const Eigen::VectorXd free_optimum = K.ldlt().solve(f);
+  Eigen::VectorXd g = B * free_optimum;
+  for (int i = 0; i < m; ++i) g[i] += (i % 2 == 0 ? -0.5 : 0.5) * std::abs(normal(random));
+  return make_qp(K, f, B, g);
+}
+
+double relative_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  return (a - b).norm() / std::max(b.norm(), 1e-300);
+}
+
+SolveOptions options_for(Backend backend, double tol) {
+  SolveOptions options;
+  options.backend = backend;
+  options.tol = tol;
+  options.max_iterations = 100000;
+  return options;
+}
+
+std::string source_path(const std::string& relative) { return std::string(CONTACTQP_SOURCE_DIR) + "/" + relative; }
+
+std::string read_text(const std::string& path) {
+  std::ifstream file(path);
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+namespace {
+std::string slurp_and_remove(const std::string& path) {
+  std::string text = read_text(path);
+  std::remove(path.c_str());
+  return text;
+}
+}  // namespace
+
+CliRun run_cli(const std::string& arguments) {
+  TemporaryDirectory directory;
+  const std::string out = directory.path("stdout"), err = directory.path("stderr");
+  const std::string command = std::string(CONTACTQP_CLI) + " " + arguments + " >" + out + " 2>" + err;
+  const int raw = std::system(command.c_str());
+  CliRun run;
+  // A crash shows as a signal: report it as 128 + signal, like a shell, so tests can tell.
+  run.exit_status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  run.out = slurp_and_remove(out);
+  run.err = slurp_and_remove(err);
+  return run;
+}
+
+TemporaryDirectory::TemporaryDirectory() {
+  std::string pattern = (std::filesystem::temp_directory_path() / "contactqp-test-XXXXXX").string();
+  if (!::mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
+  directory_ = pattern;
+}
+
+TemporaryDirectory::~TemporaryDirectory() {
+  std::error_code error;
+  std::filesystem::remove_all(directory_, error);
+}
+
+std::string patched_scene(const std::string& relative, const std::string& merge_patch) {
+  nlohmann::json scene = nlohmann::json::parse(read_text(source_path(relative)));
+  scene.merge_patch(nlohmann::json::parse(merge_patch));
+  return scene.dump(2);
+}
+
+}  // namespace contactqp::testing

@@ -1,0 +1,61 @@
+// Helpers shared by the tests: small QPs with exact solutions, running the CLI.
+#pragma once
+
+#include <Eigen/Dense>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "contactqp/qp.hpp"
+#include "contactqp/scene.hpp"
+
+namespace contactqp::testing {
+
+// A QP from dense data (K symmetric positive definite).
+QuadraticProgram make_qp(const Eigen::MatrixXd& K, const Eigen::VectorXd& f, const Eigen::MatrixXd& B,
+                         const Eigen::VectorXd& g);
+
+// The exact solution of a small QP by enumerating every active set (m ≤ 12): for each set A,
+// solve the equality-constrained KKT system and keep the one that is primal and dual feasible.
+struct ExactSolution {
+  Eigen::VectorXd u, lambda;
+};
+ExactSolution solve_by_enumeration(const QuadraticProgram& qp);
+
+// A random strictly convex QP with n variables and m constraints, reproducible from `seed`,
+// whose solution has some constraints active and some not.
+QuadraticProgram random_qp(int n, int m, unsigned seed);
+
+// ‖a − b‖ / max(‖b‖, tiny): the relative difference the tests compare against tolerances.
+double relative_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b);
+
+// Options for `backend` at tolerance `tol`, with enough iterations for the small test problems.
+SolveOptions options_for(Backend backend, double tol);
+
+// Path of a file in the source tree, e.g. source_path("scenes/hertz.json").
+std::string source_path(const std::string& relative);
+std::string read_text(const std::string& path);
+
+// Runs the contactqp executable with `arguments` (a shell-quoted string).
+struct CliRun {
+  int exit_status = -1;
+  std::string out, err;
+};
+CliRun run_cli(const std::string& arguments);
+
+// A fresh temporary directory for one test, removed by the destructor.
+class TemporaryDirectory {
+ public:
+  TemporaryDirectory();
+  ~TemporaryDirectory();
+  std::string path(const std::string& name) const { return directory_ + "/" + name; }
+
+ private:
+  std::string directory_;
+};
+
+// The shipped scene with some JSON patched in, e.g. patch_scene("scenes/hertz.json",
+// R"({"material": {"E": 1e9}})") merges like JSON Merge Patch (RFC 7386).
+std::string patched_scene(const std::string& relative, const std::string& merge_patch);
+
+}  // namespace contactqp::testing

@@ -1,0 +1,21 @@
+#!/bin/sh
+# Installs the Debian packages contactqp needs to build, test and benchmark (run as root on
+# Debian bookworm). Skips apt entirely when everything is already installed.
+set -eu
+packages="cmake g++ make pkg-config
+  libeigen3-dev libsuitesparse-dev libopenblas-dev
+  coinor-libipopt-dev libnlopt-cxx-dev
+  catch2 nlohmann-json3-dev libcli11-dev
+  libgmsh-dev gmsh
+  python3 python3-numpy python3-matplotlib python3-vtk9 python3-getfem"
+missing=""
+for p in $packages; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+if [ -n "$missing" ]; then
+  echo "installing:$missing"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  # shellcheck disable=SC2086
+  apt-get install -y -qq --no-install-recommends $missing >/dev/null
+fi
