@@ -43,6 +43,12 @@ SolveOptions scaled_options(const SolveOptions& options, const QpScaling& scalin
   if (options.uzawa.rho_rule == UzawaOptions::RhoRule::Absolute)
     scaled.uzawa.rho = options.uzawa.rho / scaling.stiffness;
   if (options.K_factor) scaled.K_factor = options.K_factor->scaled(1.0 / scaling.stiffness);
+  if (options.observer) {
+    // The observer sees iterates in the caller's units, like the final result.
+    scaled.observer = [observer = options.observer, scaling](int k, const VectorXd& u, const VectorXd& lambda) {
+      observer(k, u * scaling.displacement, lambda * (scaling.stiffness * scaling.displacement));
+    };
+  }
   return scaled;
 }
 

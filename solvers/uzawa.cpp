@@ -89,6 +89,7 @@ SolveResult solve_uzawa(const QuadraticProgram& qp, const SolveOptions& options)
     const double violation = r.size() ? std::max(0.0, r.maxCoeff()) : 0.0;
     const double rel_violation = L > 0 ? violation / L : violation;
     const double residual = std::max(rel_change, rel_violation);
+    if (options.observer) options.observer(k + 1, u, lambda);
 
     if (!std::isfinite(residual) || !lambda_next.allFinite()) {
       result.status = Status::Diverged;

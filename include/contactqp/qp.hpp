@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -83,6 +84,9 @@ struct SolveOptions {
   std::map<std::string, std::string> backend_options;  // --backend-option key=value, passed through
   // A factorisation of this QP's K to reuse (backends that use CHOLMOD then skip their own).
   std::shared_ptr<const CholeskyFactor> K_factor;
+  // Called by iterative backends with each iterate (k = 1, 2, ...), in the caller's units:
+  // for studies of convergence and tests of weak duality. Costs nothing when empty.
+  std::function<void(int k, const VectorXd& u, const VectorXd& lambda)> observer;
 };
 
 struct SolveResult {
