@@ -30,6 +30,8 @@ namespace {
 SolveResult dispatch(const QuadraticProgram& qp, const SolveOptions& options) {
   switch (options.backend) {
     case Backend::Uzawa: return solve_uzawa(qp, options);
+    case Backend::Ipopt: return solve_ipopt(qp, options);
+    case Backend::Nlopt: return solve_nlopt(qp, options);
   }
   throw InputError("backend", "= " + std::to_string(static_cast<int>(options.backend)) + ": not a backend");
 }
@@ -42,14 +44,23 @@ void validate_options(const SolveOptions& options) {
     require(uzawa.rho > 0 && std::isfinite(uzawa.rho), "rho", uzawa.rho, "must be a positive number");
   require(backend_available(options.backend), "backend", to_string(options.backend),
           "was not built into this copy of contactqp");
+  switch (options.backend) {
+    case Backend::Uzawa: break;
+    case Backend::Ipopt: check_ipopt_options(options); break;
+    case Backend::Nlopt: check_nlopt_options(options); break;
+  }
 }
 
 }  // namespace
 }  // namespace detail
 
+void validate_options(const SolveOptions& options) { detail::validate_options(options); }
+
 bool backend_available(Backend backend) {
   switch (backend) {
     case Backend::Uzawa: return true;
+    case Backend::Ipopt: return true;
+    case Backend::Nlopt: return true;
   }
   return false;
 }
