@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <mutex>
 
 #include "backend_options.hpp"
@@ -235,15 +236,19 @@ void configure(Ipopt::IpoptApplication& app, const QuadraticProgram& qp, const S
   // a length L₀ = F₀/κ and an energy F₀·L₀ of this QP (all 1 for a QP that solve() scaled).
   // The duality gap J − θ ≈ Σλᵢ(g − Bu)ᵢ sums the m complementarity products, which an
   // interior point keeps at about the same size: ask each for 1/m of the tolerance.
-  const double kappa = qp.n_dofs() ? qp.K.diagonal().cwiseAbs().maxCoeff() : 1.0;
+  double kappa = qp.n_dofs() ? qp.K.diagonal().cwiseAbs().maxCoeff() : 1.0;
+  if (!(kappa > 0 && std::isfinite(kappa))) kappa = 1.0;
   double F0 = inf_norm(qp.f);
-  if (!(F0 > 0)) F0 = std::max(kappa * inf_norm(qp.g), 1e-300);
-  const double L0 = kappa > 0 ? F0 / kappa : 1.0;
+  if (!(F0 > 0)) F0 = kappa * inf_norm(qp.g);  // no load: the force that closes the gaps
+  if (!(F0 > 0 && std::isfinite(F0))) F0 = 1.0;  // nothing to measure by
+  const double L0 = F0 / kappa;
   const double tol = options.tol;
+  // Ipopt refuses a tolerance of 0, which an underflow could produce in extreme units.
+  auto positive = [](double x) { return std::max(x, std::numeric_limits<double>::min()); };
   list.SetNumericValue("tol", tol);
-  list.SetNumericValue("dual_inf_tol", tol * F0);
-  list.SetNumericValue("constr_viol_tol", tol * L0);
-  list.SetNumericValue("compl_inf_tol", tol / std::max(1, qp.n_constraints()) * F0 * L0);
+  list.SetNumericValue("dual_inf_tol", positive(tol * F0));
+  list.SetNumericValue("constr_viol_tol", positive(tol * L0));
+  list.SetNumericValue("compl_inf_tol", positive(tol / std::max(1, qp.n_constraints()) * F0 * L0));
   // Stopping at a merely "acceptable" point after a few slow iterations would return
   // something less accurate than asked for: only the requested tolerances count.
   list.SetIntegerValue("acceptable_iter", 0);
@@ -343,10 +348,10 @@ SolveResult solve_ipopt(const QuadraticProgram& qp, const SolveOptions& options)
   result.status = outcome.status;
   if (Ipopt::IsValid(app->Statistics())) result.iterations = app->Statistics()->IterationCount();
   if (Ipopt::IsValid(app->IpoptDataObject())) {
-    Ipopt::TimingStatistics& timing = app->IpoptDataObject()->TimingStats();
-    result.diagnostics["kkt_factorization_seconds"] = timing.LinearSystemFactorization().TotalWallclockTime() +
-                                                      timing.LinearSystemSymbolicFactorization().TotalWallclockTime();
-    result.diagnostics["kkt_backsolve_seconds"] = timing.LinearSystemBackSolve().TotalWallclockTime();
+    // Factorising and solving the KKT systems with MUMPS (Ipopt's MUMPS interface does not
+    // time the factorisation on its own): nearly all of an Ipopt solve.
+    result.diagnostics["kkt_solve_seconds"] =
+        app->IpoptDataObject()->TimingStats().StdAugSystemSolverMultiSolve().TotalWallclockTime();
   }
   if (nlp->has_solution) {
     result.u = nlp->u;

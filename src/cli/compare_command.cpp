@@ -138,13 +138,25 @@ int run_compare(const CompareArguments& arguments) {
   QuadraticProgram qp = assemble_qp(model);
   for (const std::string& warning : model.warnings) std::cerr << "contactqp: warning: " << warning << "\n";
 
+  // The unit of cost (ARCHITECTURE.md): one factorisation of K and one solve with it. The
+  // same factor certifies every run, so that all are judged by the same numbers.
+  Stopwatch clock;
+  const CholeskyFactor K_factor(qp.K);
+  const double factorize_seconds = clock.seconds();
+  double linear_solve_seconds = K_factor.ok() ? std::numeric_limits<double>::infinity() : kNone;
+  for (int k = 0; k < 5 && K_factor.ok(); ++k) {  // the fastest of a few: the first one warms caches
+    clock.restart();
+    K_factor.solve(qp.f);
+    linear_solve_seconds = std::min(linear_solve_seconds, clock.seconds());
+  }
+
   // Each backend from scratch (its own factorisation included), so that the times compare.
   std::vector<Run> runs;
   for (const SolveOptions& run_options : options) {
     Run run{run_options.backend, solve(qp, run_options), {}, {}, {}, {}};
-    run.certificate = certify(qp, run.result.u, run.result.lambda, run.result.K_factor.get());
-    run.contact = summarize_contact(model, qp, run.result.u, run.result.lambda);
     run.result.K_factor.reset();  // a factor per backend is memory the next one may need
+    run.certificate = certify(qp, run.result.u, run.result.lambda, &K_factor);
+    run.contact = summarize_contact(model, qp, run.result.u, run.result.lambda);
     runs.push_back(std::move(run));
   }
 
@@ -178,6 +190,13 @@ int run_compare(const CompareArguments& arguments) {
   std::cout << format("pairwise: du %.2e (<= %.0e), dl %.2e (<= %.0e), max |gap| %.2e (<= %.0e): %s\n", max_diff_u,
                       bound.u, max_diff_lambda, bound.lambda, max_gap, bound.gap,
                       agree ? "agree" : (all_converged ? "DISAGREE" : "not all converged"));
+  if (K_factor.ok()) {
+    std::string ratios;
+    for (const Run& run : runs)
+      ratios += format(", %s %.0f", to_string(run.backend).c_str(), run.result.timings.get("total") / linear_solve_seconds);
+    std::cout << format("one factorisation of K %.3g s, one solve with it %.3g s; time in solves%s\n",
+                        factorize_seconds, linear_solve_seconds, ratios.c_str());
+  }
   for (const Run& run : runs)
     if (!converged(run))
       std::cout << format("%s: %s\n", to_string(run.backend).c_str(), run.result.message.c_str());
@@ -195,6 +214,8 @@ int run_compare(const CompareArguments& arguments) {
     out["max_pairwise_rel_diff_u"] = number(max_diff_u);
     out["max_pairwise_rel_diff_lambda"] = number(max_diff_lambda);
     out["agree"] = agree;
+    out["factorize_seconds"] = number(factorize_seconds);
+    out["linear_solve_seconds"] = number(linear_solve_seconds);
     json list = json::array();
     for (const Run& run : runs) {
       const Certificate& c = run.certificate;
@@ -205,6 +226,7 @@ int run_compare(const CompareArguments& arguments) {
                       {"message", run.result.message},
                       {"iterations", run.result.iterations},
                       {"seconds", number(run.result.timings.get("total"))},
+                      {"seconds_in_linear_solves", number(run.result.timings.get("total") / linear_solve_seconds)},
                       {"objective", number(c.objective)},
                       {"dual_objective", c.dual_available ? number(c.dual_objective) : json(nullptr)},
                       {"duality_gap", c.dual_available ? number(c.duality_gap) : json(nullptr)},

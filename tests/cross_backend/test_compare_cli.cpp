@@ -45,6 +45,10 @@ TEST_CASE("compare scenes/hertz.json --tol 1e-10: all converge and agree, exit 0
     CHECK(run.out.find(name) != std::string::npos);
   }
   CHECK(result["agree"] == true);
+  // Third-party banners and logs stay silent without --verbose.
+  CHECK(run.out.find("This program contains Ipopt") == std::string::npos);
+  CHECK(run.out.find("EXIT:") == std::string::npos);
+  CHECK(run.err.empty());
   CHECK(result["max_pairwise_rel_diff_u"].get<double>() <= 1e-6);
   CHECK(result["max_pairwise_rel_diff_lambda"].get<double>() <= 1e-5);
   CHECK(result["reference"].is_string());
