@@ -24,6 +24,11 @@ OptionMap options_for(Backend backend, const OptionMap& options) {
   return mine;
 }
 
+void reject_options(Backend backend, const OptionMap& options, const std::string& hint) {
+  for (const auto& [key, value] : options_for(backend, options))
+    throw InputError(option_field(key), "= \"" + value + "\": " + to_string(backend) + " takes no backend options; " + hint);
+}
+
 std::string option_field(const std::string& key) { return "backend option " + key; }
 
 double parse_number(const std::string& text, const std::string& field) {

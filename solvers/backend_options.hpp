@@ -21,6 +21,9 @@ using OptionMap = std::map<std::string, std::string>;
 // backend are left out.
 OptionMap options_for(Backend backend, const OptionMap& options);
 
+// For a backend that takes no options: InputError on the first key addressed to it.
+void reject_options(Backend backend, const OptionMap& options, const std::string& hint);
+
 // The field an error message names for a backend option: "backend option print_level".
 std::string option_field(const std::string& key);
 

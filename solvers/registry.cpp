@@ -2,6 +2,7 @@
 // shares — input validation, internal scaling, and the final guard against non-finite output.
 #include <cmath>
 
+#include "backend_options.hpp"
 #include "backends.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/solve.hpp"
@@ -45,7 +46,10 @@ void validate_options(const SolveOptions& options) {
   require(backend_available(options.backend), "backend", to_string(options.backend),
           "was not built into this copy of contactqp");
   switch (options.backend) {
-    case Backend::Uzawa: break;
+    case Backend::Uzawa:
+      reject_options(Backend::Uzawa, options.backend_options,
+                     "its step is --rho or solver.rho (address other backends' options as ipopt.key=value)");
+      break;
     case Backend::Ipopt: check_ipopt_options(options); break;
     case Backend::Nlopt: check_nlopt_options(options); break;
   }

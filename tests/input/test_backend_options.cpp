@@ -114,6 +114,12 @@ TEST_CASE("NLopt reports an evaluation budget it ran out of", "[input][nlopt]") 
   CHECK(r.u.allFinite());
 }
 
+TEST_CASE("Uzawa takes no backend options, but lets others' pass", "[input][uzawa]") {
+  CHECK_THROWS_WITH(validate_options(with_option(Backend::Uzawa, "rho", "0.5")),
+                    Catch::Matchers::Contains("backend option rho") && Catch::Matchers::Contains("--rho"));
+  CHECK_NOTHROW(validate_options(with_option(Backend::Uzawa, "ipopt.max_iter", "5")));
+}
+
 TEST_CASE("a scene's solver.options are backend options", "[input][scene]") {
   const Scene scene = parse_scene(patched_scene(
       "scenes/hertz.json", R"({"solver": {"backend": "ipopt", "options": {"max_iter": 50, "mu_strategy": "monotone", "tol": 1e-9}}})"));
