@@ -14,6 +14,10 @@ namespace contactqp {
 // The QP is left untouched. u and λ in the result are always finite.
 SolveResult solve(const QuadraticProgram& qp, const SolveOptions& options);
 
+// The checks solve() makes of the options, backend options included: InputError naming the
+// field. For callers that run several solves and want bad input reported before any work.
+void validate_options(const SolveOptions& options);
+
 bool backend_available(Backend backend);  // false when its library was not built in
 std::vector<Backend> available_backends();
 
