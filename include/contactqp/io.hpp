@@ -29,6 +29,7 @@ struct RunReport {
   Certificate certificate;
   ContactSummary contact;
   std::optional<HertzComparison> hertz;
+  std::vector<Reaction> reactions;    // one per displacement load
   Timings timings;                    // every phase: mesh, assemble, factorize, solve, ..., total
   std::vector<std::string> warnings;  // also printed on stderr
 };

@@ -79,6 +79,18 @@ std::optional<HertzComparison> compare_with_hertz(const Model& model, const Obst
 // The comparison for a scene with one obstacle; nullopt with several.
 std::optional<HertzComparison> compare_with_hertz(const Model& model, const ContactSummary& contact);
 
+// The force each displacement load exerts on the body through its boundary (global x, y,
+// for the thickness): r = K u − f − (contact forces), summed over the boundary's nodes. With
+// the contact forces and the force loads it balances: Σ r + Σ λ n + Σ f = 0 (doubled
+// consistently when a symmetry plane halves the model, whose own reaction is left out).
+struct Reaction {
+  std::string load;      // the load's field path, e.g. "load[0]"
+  std::string boundary;  // its boundary
+  Eigen::Vector2d force = Eigen::Vector2d::Zero();
+};
+std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
+                                const Eigen::VectorXd& lambda);
+
 // Nodal stresses (force per area), averaged over the elements sharing each node (weighted by
 // their areas) from each element's stress at that node. σzz = ν(σxx + σyy) in plane strain,
 // 0 in plane stress; von Mises from all four.

@@ -60,6 +60,7 @@ int run_solve(const SolveArguments& arguments) {
   clock.restart();
   report.contact = summarize_contact(model, qp, report.result.u, report.result.lambda);
   report.hertz = compare_with_hertz(model, report.contact);
+  report.reactions = reactions(model, qp, report.result.u, report.result.lambda);
   report.timings.add("postprocess", clock.seconds());
 
   report.warnings = model.warnings;

@@ -78,6 +78,8 @@ std::string summary_table(const RunReport& report) {
       if (const auto hertz = compare_with_hertz(model, o)) out += hertz_line("  hertz     ", *hertz);
     }
   }
+  for (const Reaction& r : report.reactions)
+    out += format("  reaction     %s on \"%s\": (%.6g, %.6g)\n", r.load.c_str(), r.boundary.c_str(), r.force.x(), r.force.y());
   std::string times;
   for (const auto& [phase, seconds] : report.timings.phases())
     if (phase != "total") times += format("%s %.3f, ", phase.c_str(), seconds);

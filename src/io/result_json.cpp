@@ -116,6 +116,10 @@ std::string result_json(const RunReport& report) {
                     {"profile", profile_json(contact.profile)},
                     {"obstacles", obstacles_json(model, contact)}};
   if (report.hertz) out["hertz"] = hertz_json(*report.hertz);
+  json supports = json::array();
+  for (const Reaction& r : report.reactions)
+    supports.push_back({{"load", r.load}, {"boundary", r.boundary}, {"force", {number(r.force.x()), number(r.force.y())}}});
+  out["reactions"] = supports;
   json solver = {{"tol", number(report.options.tol)}, {"max_iterations", report.options.max_iterations}};
   for (const auto& [name, value] : report.result.diagnostics) solver[name] = number(value);
   out["solver"] = solver;

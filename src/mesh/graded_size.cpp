@@ -3,6 +3,7 @@
 #include <gmsh.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace contactqp::detail {
@@ -13,6 +14,31 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kTriangleArea = 0.4330127018922193;
 
 }  // namespace
+
+std::vector<double> breakpoints(double start, double end, const Intervals& fine, std::vector<double> extra) {
+  extra.push_back(start);
+  extra.push_back(end);
+  for (const auto& [from, to] : fine) {
+    extra.push_back(std::clamp(from, start, end));
+    extra.push_back(std::clamp(to, start, end));
+  }
+  std::sort(extra.begin(), extra.end());
+  extra.erase(std::unique(extra.begin(), extra.end(), [](double a, double b) { return std::abs(a - b) < 1e-9; }),
+              extra.end());
+  return extra;
+}
+
+bool inside(const Intervals& fine, double t) {
+  for (const auto& [from, to] : fine)
+    if (t > from && t < to) return true;
+  return false;
+}
+
+double total_length(const Intervals& fine) {
+  double length = 0;
+  for (const auto& [from, to] : fine) length += std::max(0.0, to - from);
+  return length;
+}
 
 void set_graded_size_field(const GradedSize& sizes, const std::vector<int>& fine_curves, double fine_length,
                            int fallback_point) {

@@ -7,6 +7,18 @@
 
 namespace contactqp::detail {
 
+// Parts of a boundary curve's parameter range that are refined: sorted, disjoint intervals
+// [from, to]; from == to for a single point.
+using Intervals = std::vector<std::pair<double, double>>;
+
+// The curve's breakpoints: start, end and every interval end within them, sorted, without
+// near-duplicates (closer than 1e-9).
+std::vector<double> breakpoints(double start, double end, const Intervals& fine, std::vector<double> extra = {});
+
+// Whether t lies strictly inside one of the intervals; their total length.
+bool inside(const Intervals& fine, double t);
+double total_length(const Intervals& fine);
+
 struct GradedSize {
   double size = 0.1;           // far-field element size
   double contact_size = 0.01;  // element size on the fine curves

@@ -20,7 +20,7 @@ GradedSize unit_sizes(const RectangleMeshRequest& request) {
 double fine_length(const RectangleMeshRequest& request) {
   for (const RectangleSide& side : rectangle_sides(request.width, request.height, request.symmetry))
     if (side.name == request.fine_side)
-      return std::max(0.0, request.fine_to - request.fine_from) * (side.b - side.a).norm();
+      return total_length(request.fine) * (side.b - side.a).norm();
   return 0.0;
 }
 
@@ -53,16 +53,8 @@ Mesh mesh_rectangle(const RectangleMeshRequest& request) {
   int fallback_point = corner[0];
   for (size_t s = 0; s < sides.size(); ++s) {
     const RectangleSide& side = sides[s];
-    std::vector<double> breaks = {0.0, 1.0};
     const bool fine = side.name == request.fine_side;
-    const double t0 = std::clamp(request.fine_from, 0.0, 1.0), t1 = std::clamp(request.fine_to, 0.0, 1.0);
-    if (fine) {
-      breaks.push_back(t0);
-      breaks.push_back(t1);
-    }
-    std::sort(breaks.begin(), breaks.end());
-    breaks.erase(std::unique(breaks.begin(), breaks.end(), [](double a, double b) { return std::abs(a - b) < 1e-9; }),
-                 breaks.end());
+    const std::vector<double> breaks = breakpoints(0.0, 1.0, fine ? request.fine : Intervals{});
     std::vector<int> points = {corner[s]};
     for (size_t k = 1; k + 1 < breaks.size(); ++k) {
       const Eigen::Vector2d x = side.a + breaks[k] * (side.b - side.a);
@@ -74,8 +66,8 @@ Mesh mesh_rectangle(const RectangleMeshRequest& request) {
       loop.push_back(line);
       curves_of_side[s].push_back(line);
       const double middle = 0.5 * (breaks[k] + breaks[k + 1]);
-      if (fine && middle > t0 && middle < t1) fine_curves.push_back(line);
-      if (fine && std::abs(breaks[k] - t0) < 1e-9) fallback_point = points[k];
+      if (fine && inside(request.fine, middle)) fine_curves.push_back(line);
+      if (fine && !request.fine.empty() && std::abs(breaks[k] - request.fine.front().first) < 1e-9) fallback_point = points[k];
     }
   }
   const int surface = geo::addPlaneSurface({geo::addCurveLoop(loop)});

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "contactqp/mesh.hpp"
+#include "graded_size.hpp"
 
 namespace contactqp::detail {
 
@@ -18,7 +19,7 @@ struct RectangleMeshRequest {
   double grading = 0.1;        // size growth per unit distance from the fine part
   int order = 1;
   std::string fine_side = "bottom";   // the side along which contact can happen
-  double fine_from = 0, fine_to = 0;  // the fine part of that side, as parameters t ∈ [0, 1]
+  Intervals fine;  // the fine parts of that side, as parameters t ∈ [0, 1]
 };
 
 // One side of the rectangle, walked counter-clockwise (body on the left): x(t) = a + t (b − a).

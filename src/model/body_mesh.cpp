@@ -1,5 +1,6 @@
 // The body's mesh: the generated shapes refined along the part of the contact boundary that
 // faces an obstacle within the candidate distance, or a Gmsh file as it is.
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -23,31 +24,41 @@ struct Curve {
   double t0 = 0, t1 = 1;
 };
 
-// The parameters where the curve faces an obstacle within max_gap, widened by `widen` on each
-// side; when no point qualifies, the single point closest to an obstacle it faces.
-std::pair<double, double> fine_interval(const Curve& curve, const std::vector<ObstacleSpec>& obstacles, double max_gap,
-                                        double widen) {
+// The parameters where the curve faces an obstacle within max_gap — one interval per
+// obstacle, widened by `widen` on each side, overlapping ones merged; when no point
+// qualifies, the single point closest to an obstacle it faces.
+Intervals fine_intervals(const Curve& curve, const std::vector<ObstacleSpec>& obstacles, double max_gap, double widen) {
   const int samples = 20000;
-  double from = std::numeric_limits<double>::infinity(), to = -from;
-  double closest_t = 0.5 * (curve.t0 + curve.t1), closest_gap = std::numeric_limits<double>::infinity();
+  const double infinity = std::numeric_limits<double>::infinity();
+  Intervals per_obstacle(obstacles.size(), {infinity, -infinity});
+  double closest_t = curve.t0, closest_gap = infinity;
   for (int k = 0; k <= samples; ++k) {
     const double t = curve.t0 + (curve.t1 - curve.t0) * k / samples;
     const Eigen::Vector2d x = curve.point(t), outward = curve.outward(t);
-    for (const ObstacleSpec& obstacle : obstacles) {
-      const ObstacleProjection p = project(obstacle, x);
+    for (size_t o = 0; o < obstacles.size(); ++o) {
+      const ObstacleProjection p = project(obstacles[o], x);
       if (outward.dot(p.normal) >= -1e-9) continue;
       if (p.gap < closest_gap) {
         closest_gap = p.gap;
         closest_t = t;
       }
       if (p.gap <= max_gap) {
-        from = std::min(from, t);
-        to = std::max(to, t);
+        per_obstacle[o].first = std::min(per_obstacle[o].first, t);
+        per_obstacle[o].second = std::max(per_obstacle[o].second, t);
       }
     }
   }
-  if (from > to) return {closest_t, closest_t};
-  return {std::max(curve.t0, from - widen), std::min(curve.t1, to + widen)};
+  Intervals fine;
+  for (const auto& [from, to] : per_obstacle)
+    if (from <= to) fine.emplace_back(std::max(curve.t0, from - widen), std::min(curve.t1, to + widen));
+  if (fine.empty()) return {{closest_t, closest_t}};
+  std::sort(fine.begin(), fine.end());
+  Intervals merged = {fine.front()};
+  for (const auto& interval : fine) {
+    if (interval.first <= merged.back().second) merged.back().second = std::max(merged.back().second, interval.second);
+    else merged.push_back(interval);
+  }
+  return merged;
 }
 
 void refuse_oversized(double estimate, const BuildOptions& options) {
@@ -89,7 +100,7 @@ Mesh mesh_half_disc_body(const Scene& scene, double max_gap, const BuildOptions&
   Curve arc{[R](double phi) { return Eigen::Vector2d(R * std::sin(phi), R - R * std::cos(phi)); },
             [](double phi) { return Eigen::Vector2d(std::sin(phi), -std::cos(phi)); },
             body.symmetry ? 0.0 : -kPi / 2, kPi / 2};
-  std::tie(request.fine_from, request.fine_to) = fine_interval(arc, scene.obstacles, max_gap, body.mesh.contact_size / R);
+  request.fine = fine_intervals(arc, scene.obstacles, max_gap, body.mesh.contact_size / R);
   refuse_oversized(estimate_half_disc_triangles(request), options);
   return generate([&] { return mesh_half_disc(request); });
 }
@@ -106,8 +117,7 @@ Mesh mesh_rectangle_body(const Scene& scene, double max_gap, const BuildOptions&
     const Eigen::Vector2d a = side.a, b = side.b, d = b - a;
     const Eigen::Vector2d outward = Eigen::Vector2d(d.y(), -d.x()).normalized();
     Curve line{[a, d](double t) { return Eigen::Vector2d(a + t * d); }, [outward](double) { return outward; }};
-    std::tie(request.fine_from, request.fine_to) =
-        fine_interval(line, scene.obstacles, max_gap, body.mesh.contact_size / d.norm());
+    request.fine = fine_intervals(line, scene.obstacles, max_gap, body.mesh.contact_size / d.norm());
   }
   refuse_oversized(estimate_rectangle_triangles(request), options);
   return generate([&] { return mesh_rectangle(request); });
