@@ -125,6 +125,13 @@ GmshSession::GmshSession() : lock_(gmsh_mutex) {
   gmsh::initialize(0, nullptr, false);  // no user configuration files: the same mesh everywhere
   gmsh::option::setNumber("General.Terminal", 0);  // silent: contactqp reports, Gmsh does not
   gmsh::option::setNumber("General.Verbosity", 0);
+  gmsh::option::setNumber("General.AbortOnError", 0);
+}
+
+void throw_if_gmsh_failed() {
+  std::string error;
+  gmsh::logger::getLastError(error);
+  if (!error.empty()) throw std::runtime_error(error);
 }
 
 GmshSession::~GmshSession() { gmsh::finalize(); }

@@ -9,7 +9,9 @@
 namespace contactqp::detail {
 
 // Holds the process-wide Gmsh lock and a freshly initialised, silent Gmsh for its lifetime.
-// Gmsh reports errors as a thrown std::string; a fresh session per job keeps that reliable.
+// Gmsh is told not to throw on errors: an exception thrown from inside its .geo parser leaves
+// the parser's global state broken for every later .geo in the process. Errors are read back
+// with throw_if_gmsh_failed() instead.
 class GmshSession {
  public:
   GmshSession();
@@ -31,7 +33,10 @@ class GmshSession {
 // its Gmsh element tag. Throws std::runtime_error.
 Mesh mesh_from_gmsh(double scale = 1.0);
 
-// Gmsh's own error text from a thrown value (Gmsh throws std::string).
+// Throws std::runtime_error with Gmsh's last error message, if Gmsh logged one in this session.
+void throw_if_gmsh_failed();
+
+// Gmsh's own error text from a thrown value (Gmsh throws std::string), inside a catch block.
 std::string gmsh_error_text();
 
 }  // namespace contactqp::detail

@@ -29,6 +29,7 @@ void mesh_geometry(const GmshFileRequest& request) {
     gmsh::option::setNumber("Mesh.MeshSizeFactor", factor * request.size_factor);
   }
   gmsh::model::mesh::generate(2);
+  throw_if_gmsh_failed();
 }
 
 }  // namespace
@@ -39,6 +40,7 @@ Mesh read_gmsh_file(const GmshFileRequest& request) {
   GmshSession session;
   try {
     gmsh::open(request.path);
+    throw_if_gmsh_failed();
     if (is_geo(request.path)) mesh_geometry(request);
   } catch (...) {
     throw InputError(request.path, "could not be " + std::string(is_geo(request.path) ? "meshed" : "read") +

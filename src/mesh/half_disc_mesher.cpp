@@ -74,6 +74,7 @@ Mesh mesh_half_disc(const HalfDiscMeshRequest& request) {
                         points[std::min<size_t>(closest, points.size() - 1)]);
   gmsh::option::setNumber("Mesh.ElementOrder", request.order);
   gmsh::model::mesh::generate(2);
+  throw_if_gmsh_failed();
   Mesh mesh = mesh_from_gmsh(request.radius);
   mesh.regions.clear();  // the generated body has no named regions
   return mesh;

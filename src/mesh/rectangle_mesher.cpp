@@ -79,6 +79,7 @@ Mesh mesh_rectangle(const RectangleMeshRequest& request) {
   set_graded_size_field(unit_sizes(request), fine_curves, fine_length(request) / unit, fallback_point);
   gmsh::option::setNumber("Mesh.ElementOrder", request.order);
   gmsh::model::mesh::generate(2);
+  throw_if_gmsh_failed();
   Mesh mesh = mesh_from_gmsh(unit);
   mesh.regions.clear();
   return mesh;

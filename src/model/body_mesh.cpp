@@ -24,39 +24,37 @@ struct Curve {
   double t0 = 0, t1 = 1;
 };
 
-// The parameters where the curve faces an obstacle within max_gap — one interval per
-// obstacle, widened by `widen` on each side, overlapping ones merged; when no point
+// The parameters where the curve faces an obstacle within max_gap: each maximal run of such
+// samples, widened by `widen` on each side, overlapping runs merged. When no point
 // qualifies, the single point closest to an obstacle it faces.
 Intervals fine_intervals(const Curve& curve, const std::vector<ObstacleSpec>& obstacles, double max_gap, double widen) {
   const int samples = 20000;
-  const double infinity = std::numeric_limits<double>::infinity();
-  Intervals per_obstacle(obstacles.size(), {infinity, -infinity});
-  double closest_t = curve.t0, closest_gap = infinity;
+  Intervals runs;
+  bool in_run = false;
+  double closest_t = curve.t0, closest_gap = std::numeric_limits<double>::infinity();
   for (int k = 0; k <= samples; ++k) {
     const double t = curve.t0 + (curve.t1 - curve.t0) * k / samples;
     const Eigen::Vector2d x = curve.point(t), outward = curve.outward(t);
-    for (size_t o = 0; o < obstacles.size(); ++o) {
-      const ObstacleProjection p = project(obstacles[o], x);
+    bool near = false;
+    for (const ObstacleSpec& obstacle : obstacles) {
+      const ObstacleProjection p = project(obstacle, x);
       if (outward.dot(p.normal) >= -1e-9) continue;
       if (p.gap < closest_gap) {
         closest_gap = p.gap;
         closest_t = t;
       }
-      if (p.gap <= max_gap) {
-        per_obstacle[o].first = std::min(per_obstacle[o].first, t);
-        per_obstacle[o].second = std::max(per_obstacle[o].second, t);
-      }
+      near = near || p.gap <= max_gap;
     }
+    if (near && !in_run) runs.emplace_back(t, t);
+    if (near) runs.back().second = t;
+    in_run = near;
   }
-  Intervals fine;
-  for (const auto& [from, to] : per_obstacle)
-    if (from <= to) fine.emplace_back(std::max(curve.t0, from - widen), std::min(curve.t1, to + widen));
-  if (fine.empty()) return {{closest_t, closest_t}};
-  std::sort(fine.begin(), fine.end());
-  Intervals merged = {fine.front()};
-  for (const auto& interval : fine) {
-    if (interval.first <= merged.back().second) merged.back().second = std::max(merged.back().second, interval.second);
-    else merged.push_back(interval);
+  if (runs.empty()) return {{closest_t, closest_t}};
+  Intervals merged;
+  for (const auto& [from, to] : runs) {
+    const double a = std::max(curve.t0, from - widen), b = std::min(curve.t1, to + widen);
+    if (!merged.empty() && a <= merged.back().second) merged.back().second = std::max(merged.back().second, b);
+    else merged.emplace_back(a, b);
   }
   return merged;
 }
