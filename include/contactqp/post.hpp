@@ -23,7 +23,10 @@ struct ObstacleContact {
   int obstacle = -1;
   std::vector<ContactProfilePoint> profile;  // its candidates, sorted by s (x ≥ 0 only with symmetry)
   double total_force = 0;    // Σ λ_i, doubled when a symmetry plane halves the model (force)
-  double line_load = 0;      // total_force / thickness: Hertz's P (force per length)
+  double line_load = 0;      // total_force / thickness (force per length)
+  // Σ λ_i n_i: the obstacle's resultant force on the body (global x, y; for the whole body
+  // with symmetry). Its length is Hertz's P; on a curved obstacle it is below total_force.
+  Eigen::Vector2d resultant = Eigen::Vector2d::Zero();
   // 2·sqrt(Σλ(s − s̄)² / Σλ): equals b for a Hertz profile and, unlike the last loaded node,
   // does not jump by ±h/2 from mesh to mesh.
   double half_width = 0;

@@ -39,6 +39,7 @@ json obstacles_json(const Model& model, const ContactSummary& contact) {
     json entry = {{"type", model.scene.obstacles[o.obstacle].type},
                   {"total_force", number(o.total_force)},
                   {"line_load", number(o.line_load)},
+                  {"resultant", {number(o.resultant.x()), number(o.resultant.y())}},
                   {"half_width", number(o.half_width)},
                   {"half_width_last_node", number(o.half_width_last_node)},
                   {"centre", number(o.centre)},

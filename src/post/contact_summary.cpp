@@ -21,7 +21,10 @@ Eigen::Vector2d circle_origin(const Model& model, int obstacle) {
 }
 
 // Force, centre and widths of one obstacle's profile (sorted by s).
-void measure(ObstacleContact& contact, bool symmetry, double thickness, double lambda_max) {
+// `axis`: the symmetry plane's direction (the scene's own y axis, turned by its transform).
+void measure(ObstacleContact& contact, bool symmetry, const Eigen::Vector2d& axis, double thickness, double lambda_max) {
+  // With symmetry the mirrored half adds the same push along the axis, the opposite across it.
+  if (symmetry) contact.resultant = 2.0 * contact.resultant.dot(axis) * axis;
   const double loaded = 1e-8 * lambda_max;
   double sum = 0, first_moment = 0;
   for (const ContactProfilePoint& point : contact.profile) {
@@ -90,12 +93,13 @@ ContactSummary summarize_contact(const Model& model, const QuadraticProgram& qp,
     point.force = lambda[i];
     point.pressure = candidate.tributary > 0 ? lambda[i] / (candidate.tributary * thickness) : 0.0;
     summary.obstacles[candidate.obstacle].profile.push_back(point);
+    summary.obstacles[candidate.obstacle].resultant += lambda[i] * detail::project(obstacle, model.mesh.nodes[candidate.node]).normal;
   }
   const double lambda_max = lambda.size() ? lambda.maxCoeff() : 0.0;
   for (ObstacleContact& contact : summary.obstacles) {
     std::sort(contact.profile.begin(), contact.profile.end(),
               [](const ContactProfilePoint& a, const ContactProfilePoint& b) { return a.s < b.s; });
-    measure(contact, model.scene.body.symmetry, thickness, lambda_max);
+    measure(contact, model.scene.body.symmetry, model.rotation.col(1), thickness, lambda_max);
     summary.profile.insert(summary.profile.end(), contact.profile.begin(), contact.profile.end());
     summary.total_force += contact.total_force;
     summary.max_pressure = std::max(summary.max_pressure, contact.max_pressure);

@@ -108,7 +108,10 @@ std::optional<HertzComparison> compare_with_hertz(const Model& model, const Cont
 
 std::optional<HertzComparison> compare_with_hertz(const Model& model, const ObstacleContact& contact) {
   const Scene& scene = model.scene;
-  if (!(contact.line_load > 0)) return std::nullopt;
+  // Hertz's P: the resultant pressing the bodies together, per length (on a curved obstacle a
+  // little less than Σλ, whose normals fan out).
+  const double P = contact.resultant.norm() / scene.body.thickness;
+  if (!(P > 0)) return std::nullopt;
   const auto curvature = relative_curvature(model, contact);
   if (!curvature) return std::nullopt;
 
@@ -116,7 +119,6 @@ std::optional<HertzComparison> compare_with_hertz(const Model& model, const Obst
   const double E = scene.material.E, nu = scene.material.nu, R = 1.0 / curvature->first;
   hertz.radius = R;
   hertz.radius_source = curvature->second;
-  const double P = contact.line_load;
   hertz.effective_modulus = scene.model == PlaneModel::PlaneStrain ? E / (1 - nu * nu) : E;
   hertz.half_width = std::sqrt(4 * P * R / (kPi * hertz.effective_modulus));
   hertz.max_pressure = 2 * P / (kPi * hertz.half_width);
