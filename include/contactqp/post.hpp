@@ -60,8 +60,8 @@ ContactSummary summarize_contact(const Model& model, const QuadraticProgram& qp,
 struct HertzComparison {
   // The radius of relative curvature, 1/R = 1/R_body + 1/R_obstacle, and where it came from:
   // "body.radius" (half disc on a plane), "obstacle.radius" (a rigid circle into a flat
-  // body), "body.radius and obstacle.radius", or "fitted" (a mesh body: a circle through
-  // the nodes in contact, plus the obstacle's curvature).
+  // rectangle), "body.radius and obstacle.radius", "fitted" (a mesh body: a circle through
+  // the nodes in contact) or "fitted and obstacle.radius".
   double radius = 0;
   std::string radius_source;
   double effective_modulus = 0;   // E* = E/(1 − ν²) in plane strain, E in plane stress

@@ -10,6 +10,9 @@
 //     "solver": {"backend": "uzawa", "tol": 1e-8}
 //   }
 //
+// Bodies may also be rectangles or Gmsh files, loads forces, obstacles circles and profiles,
+// and a transform may rotate the whole scene (README: "Scene format").
+//
 // Every key is checked: an unknown key is an error naming it (with the nearest valid key as
 // a hint), a missing required key or a value of the wrong type or range is an error naming
 // the field and the value. The README lists every key with its default.
@@ -35,8 +38,8 @@ struct MeshSpec {
   double size = 0;          // element size far from the contact zone (length), > 0
   double contact_size = 0;  // element size along the candidate contact zone (length), in (0, size]
   double grading = 0.1;     // growth of the element size per unit distance from the contact zone, in (0, 1]
-  int order = 1;            // 1: 3-node triangles, 2: 6-node triangles (a .msh file: its element type decides)
-  double size_factor = 1;   // .geo files only: Gmsh's Mesh.MeshSizeFactor (all sizes times this), > 0
+  int order = 1;            // 1: 3-node, 2: 6-node triangles; 0 for a mesh file: its elements decide
+  double size_factor = 1;   // .geo files only: multiplies Gmsh's Mesh.MeshSizeFactor (all sizes), > 0
 };
 
 struct BodySpec {

@@ -1,4 +1,5 @@
-// Hertz's cylinder on a rigid plane (plane strain or plane stress), ARCHITECTURE.md:
+// Hertz's contact of two cylinders, or a cylinder and a plane (plane strain or plane stress),
+// ARCHITECTURE.md, with the radius of relative curvature 1/R = 1/R_body + 1/R_obstacle:
 //   b = sqrt(4 P R / (π E*)),  p0 = 2P / (π b),  p(x) = p0 sqrt(1 − x²/b²).
 #include <algorithm>
 #include <cmath>
@@ -92,7 +93,7 @@ std::optional<std::pair<double, std::string>> relative_curvature(const Model& mo
     body_curvature = *fitted;
     source = "fitted";
   }
-  if (obstacle_curvature > 0) source += source.empty() ? "obstacle.radius" : (source == "fitted" ? "" : " and obstacle.radius");
+  if (obstacle_curvature > 0) source += source.empty() ? "obstacle.radius" : " and obstacle.radius";
   const double curvature = body_curvature + obstacle_curvature;
   // A flat body on a plane (or a curvature lost in the fit's noise) is not Hertz's problem.
   if (!(curvature > 0) || curvature * std::max(contact.half_width, 1e-300) < 1e-6) return std::nullopt;

@@ -3,6 +3,8 @@
 // homogeneity of a receding contact, and the equivalence of one V profile and two planes.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -57,6 +59,33 @@ TEST_CASE("a rigid circle pressed into a flat block matches Hertz with R = r wit
   CHECK(std::abs(hertz.error_half_width) < 0.05);
   CHECK(std::abs(hertz.error_max_pressure) < 0.05);
   CHECK(hertz.error_l2 < 0.05);
+}
+
+TEST_CASE("a circle into a Gmsh-meshed flat block, turned: the fitted body curvature is zero", "[validation][scenes][gmsh]") {
+  TemporaryDirectory directory;
+  std::ofstream(directory.path("block.geo")) << R"geo(
+Point(1) = {-2, 0, 0}; Point(2) = {2, 0, 0}; Point(3) = {2, 2, 0}; Point(4) = {-2, 2, 0};
+Point(5) = {-0.15, 0, 0}; Point(6) = {0.15, 0, 0};
+Line(1) = {1, 5}; Line(2) = {5, 6}; Line(3) = {6, 2}; Line(4) = {2, 3}; Line(5) = {3, 4}; Line(6) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4, 5, 6}; Plane Surface(1) = {1};
+Physical Curve("bottom") = {1, 2, 3}; Physical Curve("top") = {5}; Physical Surface("block") = {1};
+Field[1] = Distance; Field[1].CurvesList = {2}; Field[1].NumPointsPerCurve = 300;
+Field[2] = MathEval; Field[2].F = "Min(0.2, 0.003 + 0.1 * F1)"; Background Field = 2;
+Mesh.MeshSizeExtendFromBoundary = 0; Mesh.MeshSizeFromPoints = 0; Mesh.MeshSizeFromCurvature = 0;
+)geo";
+  const std::string msh = directory.path("block.msh");
+  REQUIRE(std::system(("gmsh " + directory.path("block.geo") + " -2 -format msh22 -o " + msh + " >/dev/null 2>&1").c_str()) == 0);
+  const SceneRun run = run_scene(parse_scene(R"({"material": {"E": 200e9, "nu": 0.3},
+      "body": {"shape": "mesh", "file": ")" + msh + R"("},
+      "load": {"type": "displacement", "boundary": "top", "value": [0, -0.02]},
+      "obstacle": {"type": "circle", "center": [0, -1], "radius": 1},
+      "contact": {"boundary": "bottom"}, "transform": {"rotate_degrees": 77}})"));
+  REQUIRE(run.result.status == Status::Converged);
+  const HertzComparison hertz = hertz_of(run);
+  CHECK(hertz.radius_source == "fitted and obstacle.radius");
+  CHECK(hertz.radius == Approx(1.0).epsilon(1e-9));
+  CHECK(std::abs(hertz.error_half_width) < 0.05);
+  CHECK(std::abs(hertz.error_max_pressure) < 0.05);
 }
 
 TEST_CASE("a disc in a V-groove: two Hertz contacts in equilibrium with the push", "[validation][scenes]") {
