@@ -46,8 +46,8 @@ std::vector<Candidate> select_candidates(const Mesh& mesh, const std::vector<Obs
 // they add no unknown. InputError when such a prescribed position penetrates the obstacle.
 void remove_prescribed_candidates(Model& model);
 
-// One row of B and entry of g per candidate, in candidate order: −nᵀ u_i ≤ g_i, with the
-// prescribed components of u_i moved into g.
+// One row of B and entry of g per candidate, in candidate order: −nᵀ u_i ≤ g_i, u_i in the
+// node's DOF frame, with the prescribed components of u_i moved into g.
 void add_contact_rows(const Model& model, QuadraticProgram& qp);
 
 }  // namespace contactqp::detail

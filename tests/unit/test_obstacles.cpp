@@ -48,7 +48,7 @@ TEST_CASE("an inclined plane measures the gap along its normal", "[unit][obstacl
 
 TEST_CASE("a circle: gap |x − c| − r along the radius, outside positive", "[unit][obstacle]") {
   const ObstacleSpec o = circle({1, -2}, 0.5);
-  for (const Eigen::Vector2d x : {Eigen::Vector2d(1, -1), Eigen::Vector2d(2, -2.5), Eigen::Vector2d(1.1, -2.2)}) {
+  for (const Eigen::Vector2d& x : {Eigen::Vector2d(1, -1), Eigen::Vector2d(2, -2.5), Eigen::Vector2d(1.1, -2.2)}) {
     const auto p = project(o, x);
     CHECK(p.gap == Approx((x - o.center).norm() - 0.5));
     CHECK(p.normal.isApprox((x - o.center).normalized()));
