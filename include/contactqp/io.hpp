@@ -29,6 +29,7 @@ struct RunReport {
   Certificate certificate;
   ContactSummary contact;
   std::optional<HertzComparison> hertz;
+  std::vector<Reaction> reactions;    // one per displacement load
   Timings timings;                    // every phase: mesh, assemble, factorize, solve, ..., total
   std::vector<std::string> warnings;  // also printed on stderr
 };
@@ -36,7 +37,16 @@ struct RunReport {
 // The result JSON (README: "Result file"). Numbers that are not finite are written as null.
 std::string result_json(const RunReport& report);
 
-// The pressure profile: s, pressure, nodal force, and Hertz's pressure when it applies.
+// The pressure profile: s, pressure, nodal force, Hertz's pressure when it applies, obstacle.
 std::string profile_csv(const RunReport& report);
+
+// The mesh and the solution as a VTK XML unstructured grid (ParaView's .vtu): 3-node or
+// 6-node triangles (VTK_TRIANGLE, VTK_QUADRATIC_TRIANGLE), point data "displacement" (3
+// components, z = 0), "sigma_xx", "sigma_yy", "sigma_xy", "sigma_zz", "von_mises",
+// "contact_pressure" and "contact_force" (3 components, the obstacles' force on the body),
+// "gap" (on the contact boundary: the row's slack g − Bu at candidates, the deformed distance
+// to the nearest obstacle elsewhere; 0 off it) and "contact_boundary" (1 on it, 0 off it).
+// Binary (base64) arrays; no NaN.
+std::string vtu_document(const RunReport& report);
 
 }  // namespace contactqp

@@ -25,11 +25,22 @@ struct Candidate {
 };
 
 struct Model {
+  // The scene as solved, in the global frame: its transform is applied (obstacles and load
+  // vectors rotated) and reset; `rotation` remembers it.
   Scene scene;
-  Mesh mesh;
+  Eigen::Matrix2d rotation = Eigen::Matrix2d::Identity();
+  Mesh mesh;  // in the global frame
   // DOF d = 2·node + component. free_index[d] is its column in K, or −1 when prescribed.
+  // A node's two components are along the columns of its DOF frame (dof_frame(): x and y,
+  // except at nodes with a prescribed displacement in a rotated scene, whose components stay
+  // along the scene's own axes so that "[null, −δ]" keeps its meaning).
   std::vector<int> free_index;
   Eigen::VectorXd prescribed;  // 2·n_nodes: the prescribed displacement of each prescribed DOF, 0 elsewhere
+  std::vector<int> frame_of_node;      // n_nodes: index into `frames`, −1 for x, y; empty when all are x, y
+  std::vector<Eigen::Matrix2d> frames;  // orthogonal; column c is the direction of DOF component c
+  // 2·n_nodes, global x, y: consistent nodal forces of the force loads (traction, pressure,
+  // gravity, point), for the body's thickness (force).
+  Eigen::VectorXd nodal_force;
   int n_free = 0;
   std::vector<Candidate> candidates;  // one constraint row each, in row order
   double max_gap = 0;                 // the candidate distance used (length); +inf when every facing node
@@ -46,8 +57,11 @@ Model build_model(const Scene& scene, const BuildOptions& options = {});
 // one row of B and g per candidate. Records "assemble" in model timings.
 QuadraticProgram assemble_qp(Model& model);
 
-// The full nodal displacement field (2·n_nodes) from the free DOFs u.
+// The full nodal displacement field (2·n_nodes, global x, y) from the free DOFs u.
 Eigen::VectorXd full_displacement(const Model& model, const Eigen::VectorXd& u);
+
+// The directions of a node's two DOF components, as columns (the identity for x, y).
+Eigen::Matrix2d dof_frame(const Model& model, int node);
 
 // Elasticity matrix D (stress = D · [εxx, εyy, 2εxy]) of the scene's plane model.
 Eigen::Matrix3d elasticity_matrix(PlaneModel model, const Material& material);

@@ -23,7 +23,7 @@ struct SolveArguments {
   std::string rho;         // empty: the scene's
   int max_iterations = 0;
   bool max_iterations_given = false;
-  std::string json_path, csv_path;
+  std::string json_path, csv_path, vtu_path;
   long long max_elements = BuildOptions{}.max_elements;
   bool verbose = false;
   std::vector<std::string> backend_options;  // key=value

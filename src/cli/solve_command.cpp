@@ -32,6 +32,7 @@ int run_solve(const SolveArguments& arguments) {
   // Every check of the input first: a run never computes what it cannot save.
   if (!arguments.json_path.empty()) check_output_path(arguments.json_path, "--json");
   if (!arguments.csv_path.empty()) check_output_path(arguments.csv_path, "--csv");
+  if (!arguments.vtu_path.empty()) check_output_path(arguments.vtu_path, "--vtu");
   require(arguments.max_elements > 0, "--max-elements", arguments.max_elements, "must be positive");
   Scene scene = load_scene(arguments.scene_path);
   apply_overrides(arguments, scene.solver);
@@ -56,6 +57,7 @@ int run_solve(const SolveArguments& arguments) {
   clock.restart();
   report.contact = summarize_contact(model, qp, report.result.u, report.result.lambda);
   report.hertz = compare_with_hertz(model, report.contact);
+  report.reactions = reactions(model, qp, report.result.u, report.result.lambda);
   report.timings.add("postprocess", clock.seconds());
 
   report.warnings = model.warnings;
@@ -75,6 +77,7 @@ int run_solve(const SolveArguments& arguments) {
   std::cout << summary_table(report);
   if (!arguments.json_path.empty()) write_file_atomically(arguments.json_path, result_json(report));
   if (!arguments.csv_path.empty()) write_file_atomically(arguments.csv_path, profile_csv(report));
+  if (!arguments.vtu_path.empty()) write_file_atomically(arguments.vtu_path, vtu_document(report));
   return report.result.status == Status::Converged ? 0 : 1;
 }
 
@@ -100,6 +103,7 @@ void add_solve_command(CLI::App& app, int& exit_status) {
       command->add_option("--max-iterations", arguments->max_iterations, "Iteration limit (default 10000)");
   command->add_option("--json", arguments->json_path, "Write the result JSON here");
   command->add_option("--csv", arguments->csv_path, "Write the contact pressure profile CSV here");
+  command->add_option("--vtu", arguments->vtu_path, "Write the mesh, displacement, stresses, pressure and gap for ParaView (.vtu) here");
   command->add_option("--max-elements", arguments->max_elements, "Refuse meshes with more triangles (default 4000000)");
   command->add_option("--backend-option", arguments->backend_options,
                       "key=value passed to the backend (repeatable); ipopt.key=value addresses one backend");

@@ -1,5 +1,6 @@
 // The human summary of one solve: what was solved, how it ended, the certificate, the
 // contact result against Hertz, and where the time went.
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <string>
@@ -17,6 +18,27 @@ std::string format(const char* pattern, ...) {
   return buffer;
 }
 
+namespace {
+
+std::string body_text(const Model& model) {
+  const BodySpec& body = model.scene.body;
+  std::string text;
+  if (body.shape == "half_disc") text = format("half_disc R = %g", body.radius);
+  else if (body.shape == "rectangle") text = format("rectangle %g x %g", body.width, body.height);
+  else text = "mesh " + body.file;
+  const double degrees = std::atan2(model.rotation(1, 0), model.rotation(0, 0)) * 180 / 3.14159265358979323846;
+  if (degrees != 0) text += format(" rotated %g°", degrees);
+  return text;
+}
+
+std::string hertz_line(const char* label, const HertzComparison& h) {
+  return format("  %s b = %.6g (error %+.2f%%), p0 = %.6g (error %+.2f%%), L2 pressure error %.2f%% (R = %.6g, %s)\n",
+                label, h.half_width, 100 * h.error_half_width, h.max_pressure, 100 * h.error_max_pressure, 100 * h.error_l2,
+                h.radius, h.radius_source.c_str());
+}
+
+}  // namespace
+
 std::string summary_table(const RunReport& report) {
   const Model& model = *report.model;
   const Scene& scene = model.scene;
@@ -24,9 +46,8 @@ std::string summary_table(const RunReport& report) {
   const Certificate& c = report.certificate;
   std::string out;
   out += format("contactqp  %s\n", scene.source.c_str());
-  out += format("  model        %s, %s R = %g%s, E = %g, nu = %g\n", to_string(scene.model).c_str(),
-                scene.body.shape.c_str(), scene.body.radius, scene.body.symmetry ? " (half, symmetric)" : "",
-                scene.material.E, scene.material.nu);
+  out += format("  model        %s, %s%s, E = %g, nu = %g\n", to_string(scene.model).c_str(), body_text(model).c_str(),
+                scene.body.symmetry ? " (half, symmetric)" : "", scene.material.E, scene.material.nu);
   out += format("  mesh         %d nodes, %d triangles (order %d), %d DOFs, %d contact candidates (gap <= %g)\n",
                 model.mesh.n_nodes(), model.mesh.n_elements(), model.mesh.order, report.qp->n_dofs(),
                 report.qp->n_constraints(), model.max_gap);
@@ -49,11 +70,16 @@ std::string summary_table(const RunReport& report) {
   out += format("  contact      force P = %.6g, half-width b = %.6g (last node %.6g), max pressure p0 = %.6g, %d nodes\n",
                 contact.total_force, contact.half_width, contact.half_width_last_node, contact.max_pressure,
                 contact.contact_nodes);
-  if (report.hertz) {
-    const HertzComparison& h = *report.hertz;
-    out += format("  hertz        b = %.6g (error %+.2f%%), p0 = %.6g (error %+.2f%%), L2 pressure error %.2f%%\n",
-                  h.half_width, 100 * h.error_half_width, h.max_pressure, 100 * h.error_max_pressure, 100 * h.error_l2);
+  if (report.hertz) out += hertz_line("hertz       ", *report.hertz);
+  if (contact.obstacles.size() > 1) {
+    for (const ObstacleContact& o : contact.obstacles) {
+      out += format("  obstacle %-3d %s: force %.6g, half-width %.6g, max pressure %.6g, %d nodes\n", o.obstacle,
+                    scene.obstacles[o.obstacle].type.c_str(), o.total_force, o.half_width, o.max_pressure, o.contact_nodes);
+      if (const auto hertz = compare_with_hertz(model, o)) out += hertz_line("  hertz     ", *hertz);
+    }
   }
+  for (const Reaction& r : report.reactions)
+    out += format("  reaction     %s on \"%s\": (%.6g, %.6g)\n", r.load.c_str(), r.boundary.c_str(), r.force.x(), r.force.y());
   std::string times;
   for (const auto& [phase, seconds] : report.timings.phases())
     if (phase != "total") times += format("%s %.3f, ", phase.c_str(), seconds);

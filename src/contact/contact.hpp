@@ -9,12 +9,23 @@
 namespace contactqp::detail {
 
 // A point's initial gap to an obstacle, measured along the obstacle normal at the closest
-// point, and that normal (unit, from the obstacle towards the body).
+// point, and that normal (unit, from the obstacle towards the body). For a profile whose
+// closest point is a vertex, the normal points from the vertex to the point; the gap is
+// signed by the side of the vertex's pseudo-normal (negative inside the obstacle).
 struct ObstacleProjection {
   double gap = 0;
   Eigen::Vector2d normal = Eigen::Vector2d::UnitY();
 };
 ObstacleProjection project(const ObstacleSpec& obstacle, const Eigen::Vector2d& x);
+
+// The position of x's closest point along the obstacle surface (length): a plane from its
+// `point` along t = (n_y, −n_x); a circle by arc length from the direction `origin` (unit,
+// from the centre), increasing along t; a profile by arc length from its first point.
+double surface_coordinate(const ObstacleSpec& obstacle, const Eigen::Vector2d& x, const Eigen::Vector2d& origin);
+
+// Curvature of the obstacle's surface seen from the body: 1/r for a circle, 0 for a plane;
+// 0 for a profile (piecewise flat).
+double obstacle_curvature(const ObstacleSpec& obstacle);
 
 // Outward unit normal of a boundary at each of its nodes (average of its edges' normals),
 // and ∫ N_i ds (the node's tributary length) — keyed by node index.
@@ -26,7 +37,8 @@ struct BoundaryNodeGeometry {
 BoundaryNodeGeometry boundary_geometry(const Mesh& mesh, const std::string& boundary);
 
 // Nodes of the contact boundary that face an obstacle and whose initial gap is at most
-// `max_gap`: one candidate per (node, obstacle).
+// `max_gap`: one candidate per (node, obstacle). Facing: the boundary's outward normal at
+// the node points against the obstacle normal at the closest point.
 std::vector<Candidate> select_candidates(const Mesh& mesh, const std::vector<ObstacleSpec>& obstacles,
                                          const std::string& boundary, double max_gap);
 
@@ -34,8 +46,8 @@ std::vector<Candidate> select_candidates(const Mesh& mesh, const std::vector<Obs
 // they add no unknown. InputError when such a prescribed position penetrates the obstacle.
 void remove_prescribed_candidates(Model& model);
 
-// One row of B and entry of g per candidate, in candidate order: −nᵀ u_i ≤ g_i, with the
-// prescribed components of u_i moved into g.
+// One row of B and entry of g per candidate, in candidate order: −nᵀ u_i ≤ g_i, u_i in the
+// node's DOF frame, with the prescribed components of u_i moved into g.
 void add_contact_rows(const Model& model, QuadraticProgram& qp);
 
 }  // namespace contactqp::detail

@@ -3,21 +3,10 @@
 #include <map>
 
 #include "contact.hpp"
+#include "../fe/shape_functions.hpp"
 #include "contactqp/errors.hpp"
 
 namespace contactqp::detail {
-namespace {
-
-// Gauss–Legendre on [0, 1], 3 points: exact for the polynomial part of ∫ N_i |x'(t)| dt on a
-// straight quadratic edge, accurate on a curved one.
-const double kGaussT[] = {0.5 - 0.3872983346207417, 0.5, 0.5 + 0.3872983346207417};
-const double kGaussW[] = {5.0 / 18, 8.0 / 18, 5.0 / 18};
-
-}  // namespace
-
-ObstacleProjection project(const ObstacleSpec& obstacle, const Eigen::Vector2d& x) {
-  return {(x - obstacle.point).dot(obstacle.normal), obstacle.normal};
-}
 
 BoundaryNodeGeometry boundary_geometry(const Mesh& mesh, const std::string& boundary) {
   std::map<int, std::pair<Eigen::Vector2d, double>> per_node;  // node -> (normal sum, tributary)
@@ -27,22 +16,16 @@ BoundaryNodeGeometry boundary_geometry(const Mesh& mesh, const std::string& boun
       const Eigen::Vector2d& a = mesh.nodes[edge.a];
       const Eigen::Vector2d& b = mesh.nodes[edge.b];
       // Edge x(t) = N_a a + N_b b (+ N_m m): linear, or quadratic through the mid-side node.
+      // Three Gauss points: exact for the polynomial part of ∫ N_i |x'(t)| dt on a straight
+      // quadratic edge, accurate on a curved one.
       const bool quadratic = edge.mid >= 0;
-      const Eigen::Vector2d m = quadratic ? mesh.nodes[edge.mid] : Eigen::Vector2d(0.5 * (a + b));
       double w_a = 0, w_b = 0, w_m = 0;
       for (int q = 0; q < 3; ++q) {
-        const double t = kGaussT[q];
-        const Eigen::Vector2d dx = quadratic ? Eigen::Vector2d((4 * t - 3) * a + (4 * t - 1) * b + (4 - 8 * t) * m)
-                                             : Eigen::Vector2d(b - a);
-        const double jacobian = dx.norm() * kGaussW[q];
-        if (quadratic) {
-          w_a += (1 - t) * (1 - 2 * t) * jacobian;
-          w_b += t * (2 * t - 1) * jacobian;
-          w_m += 4 * t * (1 - t) * jacobian;
-        } else {
-          w_a += (1 - t) * jacobian;
-          w_b += t * jacobian;
-        }
+        const EdgePoint p = edge_point(kEdgeGaussT[q], a, b, quadratic ? &mesh.nodes[edge.mid] : nullptr);
+        const double jacobian = p.dx.norm() * kEdgeGaussW[q];
+        w_a += p.N[0] * jacobian;
+        w_b += p.N[1] * jacobian;
+        w_m += p.N[2] * jacobian;
       }
       const Eigen::Vector2d tangent = b - a;
       const Eigen::Vector2d normal = Eigen::Vector2d(tangent.y(), -tangent.x()).normalized();  // body on the left
@@ -102,10 +85,14 @@ ContactRowEntries row_of(const Model& model, const Candidate& candidate) {
       project(model.scene.obstacles[candidate.obstacle], model.mesh.nodes[candidate.node]);
   ContactRowEntries row;
   row.g = projection.gap;
+  // −nᵀu_i with u_i = T a_i (T the node's DOF frame): the coefficients of a_i are −Tᵀn.
+  const Eigen::Vector2d n = dof_frame(model, candidate.node).transpose() * projection.normal;
   for (int c = 0; c < 2; ++c) {
     const int dof = 2 * candidate.node + c;
     const int column = model.free_index[dof];
-    const double n_c = projection.normal[c];
+    // A component that is zero but for round-off (a normal along a rotated DOF axis) is zero:
+    // the same scene turned by any angle then gives the same rows.
+    const double n_c = std::abs(n[c]) < 1e-14 ? 0.0 : n[c];
     if (column < 0)
       row.g += n_c * model.prescribed[dof];  // −n_c u_c is known: move it to the right-hand side
     else if (n_c != 0.0)

@@ -5,6 +5,20 @@
 #include "contactqp/model.hpp"
 
 namespace contactqp {
+namespace {
+
+// K_e in the nodes' DOF frames: Tᵀ K_e T with T block-diagonal (identity at most nodes).
+void rotate_to_dof_frames(const Model& model, const int* v, int npe, Eigen::MatrixXd& Ke) {
+  if (model.frame_of_node.empty()) return;
+  bool any = false;
+  for (int i = 0; i < npe; ++i) any = any || model.frame_of_node[v[i]] >= 0;
+  if (!any) return;
+  Eigen::MatrixXd T = Eigen::MatrixXd::Identity(2 * npe, 2 * npe);
+  for (int i = 0; i < npe; ++i) T.block<2, 2>(2 * i, 2 * i) = dof_frame(model, v[i]);
+  Ke = T.transpose() * Ke * T;
+}
+
+}  // namespace
 
 QuadraticProgram assemble_qp(Model& model) {
   Stopwatch clock;
@@ -26,7 +40,8 @@ QuadraticProgram assemble_qp(Model& model) {
       dofs[2 * i] = 2 * v[i];
       dofs[2 * i + 1] = 2 * v[i] + 1;
     }
-    const Eigen::MatrixXd Ke = element_stiffness(coordinates.data(), mesh.order, D, thickness);
+    Eigen::MatrixXd Ke = element_stiffness(coordinates.data(), mesh.order, D, thickness);
+    rotate_to_dof_frames(model, v, npe, Ke);
     for (int i = 0; i < 2 * npe; ++i) {
       const int row = model.free_index[dofs[i]];
       if (row < 0) continue;
@@ -38,6 +53,13 @@ QuadraticProgram assemble_qp(Model& model) {
           qp.f[row] -= Ke(i, j) * model.prescribed[dofs[j]];  // prescribed displacement to the right-hand side
       }
     }
+  }
+  // Force loads: f_a = Tᵀ f_x at each node (T its DOF frame); forces at prescribed DOFs go
+  // to the reactions.
+  for (int node = 0; node < mesh.n_nodes(); ++node) {
+    const Eigen::Vector2d force = dof_frame(model, node).transpose() * model.nodal_force.segment<2>(2 * node);
+    for (int c = 0; c < 2; ++c)
+      if (model.free_index[2 * node + c] >= 0) qp.f[model.free_index[2 * node + c]] += force[c];
   }
   qp.K.resize(model.n_free, model.n_free);
   qp.K.setFromTriplets(triplets.begin(), triplets.end());
@@ -52,6 +74,9 @@ Eigen::VectorXd full_displacement(const Model& model, const Eigen::VectorXd& u) 
   Eigen::VectorXd full = model.prescribed;
   for (size_t dof = 0; dof < model.free_index.size(); ++dof)
     if (model.free_index[dof] >= 0) full[dof] = u[model.free_index[dof]];
+  if (!model.frame_of_node.empty())
+    for (int node = 0; node < model.mesh.n_nodes(); ++node)
+      if (model.frame_of_node[node] >= 0) full.segment<2>(2 * node) = dof_frame(model, node) * full.segment<2>(2 * node);
   return full;
 }
 

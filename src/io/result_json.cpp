@@ -16,6 +16,61 @@ json number(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
 // The phases the README promises are always present (0 when a backend has no such phase).
 const char* const kRequiredPhases[] = {"mesh", "assemble", "factorize", "solve", "total"};
 
+json hertz_json(const HertzComparison& h) {
+  return {{"radius", number(h.radius)},
+          {"radius_source", h.radius_source},
+          {"half_width", number(h.half_width)},
+          {"max_pressure", number(h.max_pressure)},
+          {"effective_modulus", number(h.effective_modulus)},
+          {"error_half_width", number(h.error_half_width)},
+          {"error_max_pressure", number(h.error_max_pressure)},
+          {"error_l2", number(h.error_l2)}};
+}
+
+json profile_json(const std::vector<ContactProfilePoint>& points) {
+  json profile = json::array();
+  for (const ContactProfilePoint& point : points) profile.push_back({number(point.s), number(point.pressure)});
+  return profile;
+}
+
+json obstacles_json(const Model& model, const ContactSummary& contact) {
+  json list = json::array();
+  for (const ObstacleContact& o : contact.obstacles) {
+    json entry = {{"type", model.scene.obstacles[o.obstacle].type},
+                  {"total_force", number(o.total_force)},
+                  {"line_load", number(o.line_load)},
+                  {"resultant", {number(o.resultant.x()), number(o.resultant.y())}},
+                  {"half_width", number(o.half_width)},
+                  {"half_width_last_node", number(o.half_width_last_node)},
+                  {"centre", number(o.centre)},
+                  {"max_pressure", number(o.max_pressure)},
+                  {"contact_nodes", o.contact_nodes},
+                  {"profile", profile_json(o.profile)}};
+    if (const auto hertz = compare_with_hertz(model, o)) entry["hertz"] = hertz_json(*hertz);
+    list.push_back(entry);
+  }
+  return list;
+}
+
+json scene_json(const Model& model) {
+  const Scene& scene = model.scene;
+  json out = {{"source", scene.source},
+              {"model", to_string(scene.model)},
+              {"E", number(scene.material.E)},
+              {"nu", number(scene.material.nu)},
+              {"shape", scene.body.shape},
+              {"symmetry", scene.body.symmetry},
+              {"thickness", number(scene.body.thickness)},
+              {"rotate_degrees", number(std::atan2(model.rotation(1, 0), model.rotation(0, 0)) * 180 / 3.14159265358979323846)}};
+  if (scene.body.shape == "half_disc") out["radius"] = number(scene.body.radius);
+  if (scene.body.shape == "rectangle") {
+    out["width"] = number(scene.body.width);
+    out["height"] = number(scene.body.height);
+  }
+  if (scene.body.shape == "mesh") out["file"] = scene.body.file;
+  return out;
+}
+
 json timings_json(const Timings& timings) {
   json out = json::object();
   for (const char* phase : kRequiredPhases) out[phase] = number(timings.get(phase));
@@ -50,8 +105,6 @@ std::string result_json(const RunReport& report) {
                 {"max", number(c.kkt_max())}};
 
   const ContactSummary& contact = report.contact;
-  json profile = json::array();
-  for (const ContactProfilePoint& point : contact.profile) profile.push_back({number(point.s), number(point.pressure)});
   out["contact"] = {{"total_force", number(contact.total_force)},
                     {"line_load", number(contact.line_load)},
                     {"half_width", number(contact.half_width)},
@@ -61,16 +114,13 @@ std::string result_json(const RunReport& report) {
                     {"candidate_max_gap", number(model.max_gap)},
                     {"candidate_rule", model.max_gap_rule},
                     {"penetrating_non_candidates", contact.penetrating_non_candidates},
-                    {"profile", profile}};
-  if (report.hertz) {
-    const HertzComparison& h = *report.hertz;
-    out["hertz"] = {{"half_width", number(h.half_width)},
-                    {"max_pressure", number(h.max_pressure)},
-                    {"effective_modulus", number(h.effective_modulus)},
-                    {"error_half_width", number(h.error_half_width)},
-                    {"error_max_pressure", number(h.error_max_pressure)},
-                    {"error_l2", number(h.error_l2)}};
-  }
+                    {"profile", profile_json(contact.profile)},
+                    {"obstacles", obstacles_json(model, contact)}};
+  if (report.hertz) out["hertz"] = hertz_json(*report.hertz);
+  json supports = json::array();
+  for (const Reaction& r : report.reactions)
+    supports.push_back({{"load", r.load}, {"boundary", r.boundary}, {"force", {number(r.force.x()), number(r.force.y())}}});
+  out["reactions"] = supports;
   json solver = {{"tol", number(report.options.tol)}, {"max_iterations", report.options.max_iterations}};
   for (const auto& [name, value] : report.result.diagnostics) solver[name] = number(value);
   out["solver"] = solver;
@@ -80,15 +130,7 @@ std::string result_json(const RunReport& report) {
     if (it != report.result.diagnostics.end()) out[key] = number(it->second);
   }
   out["timings"] = timings_json(report.timings);
-  const Scene& scene = model.scene;
-  out["scene"] = {{"source", scene.source},
-                  {"model", to_string(scene.model)},
-                  {"E", number(scene.material.E)},
-                  {"nu", number(scene.material.nu)},
-                  {"shape", scene.body.shape},
-                  {"radius", number(scene.body.radius)},
-                  {"symmetry", scene.body.symmetry},
-                  {"thickness", number(scene.body.thickness)}};
+  out["scene"] = scene_json(model);
   out["warnings"] = report.warnings;
   return out.dump(2) + "\n";
 }
@@ -96,11 +138,15 @@ std::string result_json(const RunReport& report) {
 std::string profile_csv(const RunReport& report) {
   std::ostringstream out;
   out << std::setprecision(12);
-  out << "s,pressure,force,hertz_pressure\n";
-  for (const ContactProfilePoint& point : report.contact.profile) {
-    out << point.s << ',' << point.pressure << ',' << point.force << ',';
-    if (report.hertz) out << hertz_pressure(*report.hertz, point.s - report.contact.centre);
-    out << '\n';
+  out << "s,pressure,force,hertz_pressure,obstacle\n";
+  const Model& model = *report.model;
+  for (const ObstacleContact& contact : report.contact.obstacles) {
+    const auto hertz = compare_with_hertz(model, contact);
+    for (const ContactProfilePoint& point : contact.profile) {
+      out << point.s << ',' << point.pressure << ',' << point.force << ',';
+      if (hertz) out << hertz_pressure(*hertz, point.s - contact.centre);
+      out << ',' << point.obstacle << '\n';
+    }
   }
   return out.str();
 }

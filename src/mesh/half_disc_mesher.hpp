@@ -3,6 +3,7 @@
 #pragma once
 
 #include "contactqp/mesh.hpp"
+#include "graded_size.hpp"
 
 namespace contactqp::detail {
 
@@ -16,7 +17,7 @@ struct HalfDiscMeshRequest {
   double contact_size = 0.01;  // element size along the fine arc (length)
   double grading = 0.25;       // size growth per unit distance from the fine arc
   int order = 1;
-  double fine_from = 0, fine_to = 0;  // the fine arc, as angles φ; equal for a single point
+  Intervals fine;  // the fine arcs, as angles φ; a single point when nothing can touch
 };
 
 // Boundaries of the result: "arc", "top", and "symmetry" (x = 0) when symmetric.

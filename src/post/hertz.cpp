@@ -1,8 +1,12 @@
-// Hertz's cylinder on a rigid plane (plane strain or plane stress), ARCHITECTURE.md:
+// Hertz's contact of two cylinders, or a cylinder and a plane (plane strain or plane stress),
+// ARCHITECTURE.md, with the radius of relative curvature 1/R = 1/R_body + 1/R_obstacle:
 //   b = sqrt(4 P R / (π E*)),  p0 = 2P / (π b),  p(x) = p0 sqrt(1 − x²/b²).
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/SVD>
+
+#include "../contact/contact.hpp"
 #include "contactqp/post.hpp"
 
 namespace contactqp {
@@ -35,15 +39,87 @@ double hertz_pressure(const HertzComparison& hertz, double x) {
   return hertz.max_pressure * std::sqrt(1.0 - (x / b) * (x / b));
 }
 
-std::optional<HertzComparison> compare_with_hertz(const Model& model, const ContactSummary& contact) {
+namespace {
+
+// Signed curvature of the body's boundary through the nodes in contact with obstacle o
+// (positive when convex towards the obstacle): an algebraic circle A|x|² + Dx + Ey + F = 0
+// through the initial positions, fitted in centred, scaled coordinates (exact for nodes on a
+// circle, 0 for nodes on a line). nullopt with fewer than four nodes in contact.
+std::optional<double> fitted_body_curvature(const Model& model, const ObstacleContact& contact) {
+  std::vector<Eigen::Vector2d> points;
+  const double loaded = 1e-8 * std::max(1e-300, [&] {
+    double m = 0;
+    for (const auto& p : contact.profile) m = std::max(m, p.force);
+    return m;
+  }());
+  for (const ContactProfilePoint& p : contact.profile)
+    if (p.force > loaded) points.push_back(model.mesh.nodes[p.node]);
+  if (points.size() < 4) return std::nullopt;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& x : points) mean += x;
+  mean /= static_cast<double>(points.size());
+  double scale = 0;
+  for (const auto& x : points) scale = std::max(scale, (x - mean).norm());
+  Eigen::MatrixXd M(points.size(), 4);
+  for (size_t k = 0; k < points.size(); ++k) {
+    const Eigen::Vector2d y = (points[k] - mean) / scale;
+    M.row(k) << y.squaredNorm(), y.x(), y.y(), 1.0;
+  }
+  const Eigen::Vector4d c = Eigen::JacobiSVD<Eigen::MatrixXd>(M, Eigen::ComputeFullV).matrixV().col(3);
+  const double A = c[0], D = c[1], E = c[2], F = c[3];
+  const double gradient = std::sqrt(std::max(0.0, D * D + E * E - 4 * A * F));  // |∇(A|y|² + Dy + Ey + F)| on the curve
+  if (!(gradient > 0)) return std::nullopt;
+  // ∇ at the centroid (y = 0) is (D, E); the body is convex when the side where the form is
+  // negative (inside the circle for A > 0) is away from the obstacle, i.e. ∇ points at it.
+  const Eigen::Vector2d towards_obstacle = -detail::project(model.scene.obstacles[contact.obstacle], mean).normal;
+  const double sign = Eigen::Vector2d(D, E).dot(towards_obstacle) >= 0 ? 1.0 : -1.0;
+  return sign * 2 * A / gradient / scale;
+}
+
+// 1/R = body curvature + obstacle curvature, and the words for where it came from.
+std::optional<std::pair<double, std::string>> relative_curvature(const Model& model, const ObstacleContact& contact) {
   const Scene& scene = model.scene;
-  if (scene.body.shape != "half_disc" || scene.obstacles.size() != 1 || scene.obstacles[0].type != "plane")
-    return std::nullopt;
-  if (!(contact.line_load > 0)) return std::nullopt;
+  const ObstacleSpec& obstacle = scene.obstacles[contact.obstacle];
+  if (obstacle.type == "profile") return std::nullopt;
+  const double obstacle_curvature = detail::obstacle_curvature(obstacle);
+  double body_curvature = 0;
+  std::string source;
+  if (scene.body.shape == "half_disc" && scene.contact.boundary == "arc") {
+    body_curvature = 1.0 / scene.body.radius;
+    source = "body.radius";
+  } else if (scene.body.shape == "mesh") {
+    const auto fitted = fitted_body_curvature(model, contact);
+    if (!fitted) return std::nullopt;
+    body_curvature = *fitted;
+    source = "fitted";
+  }
+  if (obstacle_curvature > 0) source += source.empty() ? "obstacle.radius" : " and obstacle.radius";
+  const double curvature = body_curvature + obstacle_curvature;
+  // A flat body on a plane (or a curvature lost in the fit's noise) is not Hertz's problem.
+  if (!(curvature > 0) || curvature * std::max(contact.half_width, 1e-300) < 1e-6) return std::nullopt;
+  return std::make_pair(curvature, source);
+}
+
+}  // namespace
+
+std::optional<HertzComparison> compare_with_hertz(const Model& model, const ContactSummary& contact) {
+  if (contact.obstacles.size() != 1) return std::nullopt;
+  return compare_with_hertz(model, contact.obstacles[0]);
+}
+
+std::optional<HertzComparison> compare_with_hertz(const Model& model, const ObstacleContact& contact) {
+  const Scene& scene = model.scene;
+  // Hertz's P: the resultant pressing the bodies together, per length (on a curved obstacle a
+  // little less than Σλ, whose normals fan out).
+  const double P = contact.resultant.norm() / scene.body.thickness;
+  if (!(P > 0)) return std::nullopt;
+  const auto curvature = relative_curvature(model, contact);
+  if (!curvature) return std::nullopt;
 
   HertzComparison hertz;
-  const double E = scene.material.E, nu = scene.material.nu, R = scene.body.radius;
-  const double P = contact.line_load;
+  const double E = scene.material.E, nu = scene.material.nu, R = 1.0 / curvature->first;
+  hertz.radius = R;
+  hertz.radius_source = curvature->second;
   hertz.effective_modulus = scene.model == PlaneModel::PlaneStrain ? E / (1 - nu * nu) : E;
   hertz.half_width = std::sqrt(4 * P * R / (kPi * hertz.effective_modulus));
   hertz.max_pressure = 2 * P / (kPi * hertz.half_width);

@@ -16,6 +16,7 @@ class JsonObject {
   JsonObject(const nlohmann::json& value, std::string path);
 
   bool has(const std::string& key) const;
+  const std::string& path() const { return path_; }  // this object's field path
   std::string path_of(const std::string& key) const;
 
   double number(const std::string& key);

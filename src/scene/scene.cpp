@@ -2,25 +2,33 @@
 // before any mesh is built, so that bad input fails fast with the field's name.
 #include "contactqp/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "contactqp/errors.hpp"
-#include "json_reader.hpp"
+#include "readers.hpp"
 
 namespace contactqp {
 namespace {
 
 using detail::describe;
 using detail::JsonObject;
+using detail::nearest;
 using nlohmann::json;
+
+ContactSpec read_contact(JsonObject contact, const BodySpec& body);
+
+}  // namespace
+
+namespace detail {
 
 Eigen::Vector2d read_vector(const json& value, const std::string& path) {
   if (!value.is_array() || value.size() != 2)
     throw InputError(path, "= " + describe(value) + ": must be an array of two numbers [x, y]");
-  return {detail::as_number(value[0], path + "[0]"), detail::as_number(value[1], path + "[1]")};
+  return {as_number(value[0], path + "[0]"), as_number(value[1], path + "[1]")};
 }
 
 std::string join(const std::vector<std::string>& words) {
@@ -29,57 +37,27 @@ std::string join(const std::vector<std::string>& words) {
   return text;
 }
 
+void unknown_choice(const std::string& path, const std::string& value, const std::string& what,
+                    const std::vector<std::string>& valid) {
+  const std::string hint = nearest(value, valid);
+  throw InputError(path, "= \"" + value + "\": unknown " + what + "; valid: " + join(valid) +
+                             (hint.empty() ? "" : "; did you mean \"" + hint + "\"?"));
+}
+
 void require_boundary(const std::string& name, const BodySpec& body, const std::string& path) {
+  if (body.shape == "mesh") return;  // its physical groups are known once the mesh is read
   const std::vector<std::string> names = boundary_names(body);
   for (const auto& known : names)
     if (name == known) return;
-  const std::string hint = detail::nearest(name, names);
+  const std::string hint = nearest(name, names);
   throw InputError(path, "= \"" + name + "\": not a boundary of a " + body.shape +
                              (body.symmetry ? " with symmetry" : "") + "; valid: " + join(names) +
                              (hint.empty() ? "" : "; did you mean \"" + hint + "\"?"));
 }
 
-MeshSpec read_mesh(JsonObject mesh) {
-  MeshSpec spec;
-  spec.size = mesh.number("size");
-  require(spec.size > 0, mesh.path_of("size"), spec.size, "must be positive");
-  spec.contact_size = mesh.number("contact_size");
-  require(spec.contact_size > 0, mesh.path_of("contact_size"), spec.contact_size, "must be positive");
-  require(spec.contact_size <= spec.size, mesh.path_of("contact_size"), spec.contact_size,
-          "must not exceed body.mesh.size = " + detail::format_value(spec.size));
-  if (auto grading = mesh.optional_number("grading")) {
-    spec.grading = *grading;
-    require(spec.grading > 0 && spec.grading <= 1, mesh.path_of("grading"), spec.grading, "must lie in (0, 1]");
-  }
-  if (auto order = mesh.optional_integer("order")) {
-    spec.order = *order;
-    require(spec.order == 1 || spec.order == 2, mesh.path_of("order"), spec.order, "must be 1 or 2");
-  }
-  mesh.finish();
-  return spec;
-}
+}  // namespace detail
 
-BodySpec read_body(JsonObject body) {
-  BodySpec spec;
-  spec.shape = body.string("shape");
-  if (spec.shape != "half_disc") {
-    const std::string hint = detail::nearest(spec.shape, {"half_disc"});
-    throw InputError(body.path_of("shape"), "= \"" + spec.shape + "\": unknown shape; valid: half_disc" +
-                                                (hint.empty() ? "" : "; did you mean \"" + hint + "\"?"));
-  }
-  spec.radius = body.number("radius");
-  require(spec.radius > 0, body.path_of("radius"), spec.radius, "must be positive");
-  spec.symmetry = body.optional_boolean("symmetry").value_or(false);
-  if (auto thickness = body.optional_number("thickness")) {
-    spec.thickness = *thickness;
-    require(spec.thickness > 0, body.path_of("thickness"), spec.thickness, "must be positive");
-  }
-  spec.mesh = read_mesh(body.object("mesh"));
-  require(spec.mesh.contact_size <= spec.radius, body.path_of("mesh.contact_size"), spec.mesh.contact_size,
-          "must not exceed body.radius = " + detail::format_value(spec.radius));
-  body.finish();
-  return spec;
-}
+namespace {
 
 // A section that may be one object or an array of them ("load": {...} or "load": [{...}]).
 std::vector<std::pair<const json*, std::string>> one_or_many(const json& value, const std::string& path) {
@@ -93,51 +71,17 @@ std::vector<std::pair<const json*, std::string>> one_or_many(const json& value, 
   return items;
 }
 
-LoadSpec read_load(JsonObject load, const BodySpec& body) {
-  LoadSpec spec;
-  spec.type = load.string("type");
-  if (spec.type != "displacement") {
-    const std::string hint = detail::nearest(spec.type, {"displacement"});
-    throw InputError(load.path_of("type"), "= \"" + spec.type + "\": unknown load type; valid: displacement" +
-                                               (hint.empty() ? "" : "; did you mean \"" + hint + "\"?"));
-  }
-  spec.boundary = load.string("boundary");
-  require_boundary(spec.boundary, body, load.path_of("boundary"));
-  const json& value = load.value("value");
-  const std::string path = load.path_of("value");
-  if (!value.is_array() || value.size() != 2)
-    throw InputError(path, "= " + describe(value) + ": must be [ux, uy], a component null when free");
-  for (int c = 0; c < 2; ++c)
-    if (!value[c].is_null()) spec.value[c] = detail::as_number(value[c], path + "[" + std::to_string(c) + "]");
-  if (!spec.value[0] && !spec.value[1])
-    throw InputError(path, "= [null, null]: prescribe at least one component");
-  load.finish();
-  return spec;
-}
-
-ObstacleSpec read_obstacle(JsonObject obstacle) {
-  ObstacleSpec spec;
-  spec.type = obstacle.string("type");
-  if (spec.type != "plane") {
-    const std::string hint = detail::nearest(spec.type, {"plane"});
-    throw InputError(obstacle.path_of("type"), "= \"" + spec.type + "\": unknown obstacle type; valid: plane" +
-                                                   (hint.empty() ? "" : "; did you mean \"" + hint + "\"?"));
-  }
-  spec.point = read_vector(obstacle.value("point"), obstacle.path_of("point"));
-  spec.normal = read_vector(obstacle.value("normal"), obstacle.path_of("normal"));
-  const double length = spec.normal.norm();
-  if (!(length > 0))
-    throw InputError(obstacle.path_of("normal"), "= [0, 0]: must be a non-zero vector");
-  spec.normal /= length;
-  obstacle.finish();
-  return spec;
+std::string default_contact_boundary(const BodySpec& body) {
+  if (body.shape == "half_disc") return "arc";
+  if (body.shape == "rectangle") return "bottom";
+  throw InputError("contact.boundary", "is missing: a mesh body needs the name of the physical curve that may touch");
 }
 
 ContactSpec read_contact(JsonObject contact, const BodySpec& body) {
   ContactSpec spec;
   if (auto boundary = contact.optional_string("boundary")) {
     spec.boundary = *boundary;
-    require_boundary(spec.boundary, body, contact.path_of("boundary"));
+    detail::require_boundary(spec.boundary, body, contact.path_of("boundary"));
   }
   spec.max_gap = contact.optional_number("max_gap");
   if (spec.max_gap) require(*spec.max_gap >= 0, contact.path_of("max_gap"), *spec.max_gap, "must be ≥ 0");
@@ -183,21 +127,6 @@ void read_solver(JsonObject solver, SolveOptions& options) {
   solver.finish();
 }
 
-void check_symmetry(const Scene& scene) {
-  if (!scene.body.symmetry) return;
-  // Modelling x ≥ 0 alone is right only when the rest of the scene is mirror-symmetric.
-  for (size_t i = 0; i < scene.obstacles.size(); ++i) {
-    const ObstacleSpec& o = scene.obstacles[i];
-    if (std::abs(o.normal.x()) > 1e-12 || std::abs(o.point.x()) > 0)
-      throw InputError("body.symmetry", "= true: obstacle " + std::to_string(i) +
-                                            " is not symmetric about x = 0 (its point must have x = 0 and its normal no x component); set \"symmetry\": false");
-  }
-  for (const LoadSpec& load : scene.loads)
-    if (load.value[0] && *load.value[0] != 0.0)
-      throw InputError("body.symmetry", "= true: the load on \"" + load.boundary + "\" has ux = " +
-                                            detail::format_value(*load.value[0]) + " ≠ 0, which breaks the symmetry; set \"symmetry\": false");
-}
-
 }  // namespace
 
 std::string to_string(PlaneModel model) {
@@ -205,8 +134,11 @@ std::string to_string(PlaneModel model) {
 }
 
 std::vector<std::string> boundary_names(const BodySpec& body) {
-  std::vector<std::string> names = {"arc", "top"};
-  if (body.symmetry) names.push_back("symmetry");
+  std::vector<std::string> names;
+  if (body.shape == "half_disc") names = {"arc", "top"};
+  else if (body.shape == "rectangle") names = {"bottom", "right", "top", body.symmetry ? "" : "left"};
+  names.erase(std::remove(names.begin(), names.end(), ""), names.end());
+  if (body.symmetry && body.shape != "mesh") names.push_back("symmetry");
   return names;
 }
 
@@ -251,9 +183,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
     if (*model == "plane_strain") scene.model = PlaneModel::PlaneStrain;
     else if (*model == "plane_stress") scene.model = PlaneModel::PlaneStress;
     else {
-      const std::string hint = detail::nearest(*model, {"plane_strain", "plane_stress"});
-      throw InputError("model", "= \"" + *model + "\": valid: plane_strain, plane_stress" +
-                                    (hint.empty() ? "" : "; did you mean \"" + hint + "\"?"));
+      detail::unknown_choice("model", *model, "model", {"plane_strain", "plane_stress"});
     }
   }
 
@@ -264,16 +194,17 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   require(scene.material.nu > -1 && scene.material.nu < 0.5, "material.nu", scene.material.nu, "must lie in (-1, 0.5)");
   material.finish();
 
-  scene.body = read_body(root.object("body"));
+  scene.body = detail::read_body(root.object("body"), source);
   for (const auto& [item, path] : one_or_many(root.value("load"), "load"))
-    scene.loads.push_back(read_load(JsonObject(*item, path), scene.body));
+    scene.loads.push_back(detail::read_load(JsonObject(*item, path), scene.body));
   for (const auto& [item, path] : one_or_many(root.value("obstacle"), "obstacle"))
-    scene.obstacles.push_back(read_obstacle(JsonObject(*item, path)));
+    scene.obstacles.push_back(detail::read_obstacle(JsonObject(*item, path)));
   if (root.has("contact")) scene.contact = read_contact(root.object("contact"), scene.body);
-  if (scene.contact.boundary.empty()) scene.contact.boundary = "arc";
+  if (scene.contact.boundary.empty()) scene.contact.boundary = default_contact_boundary(scene.body);
+  if (root.has("transform")) scene.transform = detail::read_transform(root.object("transform"));
   if (root.has("solver")) read_solver(root.object("solver"), scene.solver);
   root.finish();
-  check_symmetry(scene);
+  detail::check_symmetry(scene);
   return scene;
 }
 

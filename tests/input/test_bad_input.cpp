@@ -3,8 +3,10 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "contactqp/errors.hpp"
+#include "contactqp/model.hpp"
 #include "contactqp/scene.hpp"
 #include "test_support.hpp"
 
@@ -57,6 +59,33 @@ std::vector<BadScene> bad_scenes() {
       {patch(R"({"contact": {"max_gap": -1}})"), "contact.max_gap = -1"},
       {patch(R"({"material": null})"), "material"},
       {patch(R"({"load": {"value": [0.1, -0.01]}})"), "body.symmetry"},
+      // Issue 8: shapes, Gmsh files, loads, obstacles, transform.
+      {patch(R"({"body": {"shape": "mesh"}})"), "body.file"},
+      {patch(R"({"body": {"shape": "mesh", "file": "disc.stl"}})"), "body.file"},
+      {patch(R"({"body": {"shape": "mesh", "file": "no_such_disc.msh"}})"), "body.file"},
+      {patch(R"({"body": {"shape": "rectangle", "width": 0, "height": 1}})"), "body.width = 0"},
+      {patch(R"({"body": {"shape": "rectangle", "width": 1}})"), "body.height"},
+      {patch(R"({"body": {"shape": "rectangel"}})"), "did you mean \"rectangle\""},
+      {patch(R"({"body": {"shape": "rectangle", "width": 4, "height": 2, "radius": null}, "load": {"boundary": "arc"}})"), "load.boundary = \"arc\": not a boundary of a rectangle"},
+      {patch(R"({"load": {"type": "pressure"}})"), "load.value"},
+      {patch(R"({"load": {"type": "traction", "value": 3}})"), "load.value"},
+      {patch(R"({"load": {"type": "gravity", "density": -1, "g": [0, -1], "boundary": null, "value": null}})"), "load.density = -1"},
+      {patch(R"({"load": {"type": "point", "boundary": null, "value": [0, 1]}})"), "load"},
+      {patch(R"({"load": {"type": "point", "boundary": null, "value": [0, 1], "point": "tip"}})"), "load.point"},
+      {patch(R"({"load": {"type": "gravity", "density": 1, "g": [0, -1], "boundary": null, "value": null, "region": "body"}})"), "load.region"},
+      {patch(R"({"load": {"type": "pressure", "value": 1, "at": [0, 0]}})"), "load.at"},
+      {patch(R"({"obstacle": {"type": "circle", "center": [0, -1], "radius": 0, "point": null, "normal": null}})"), "obstacle.radius = 0"},
+      {patch(R"({"obstacle": {"type": "circle", "center": [0, -1], "point": null, "normal": null}})"), "obstacle.radius"},
+      {patch(R"({"obstacle": {"type": "profile", "points": [[0, 0]], "body_side": "left", "point": null, "normal": null}})"), "obstacle.points"},
+      {patch(R"({"obstacle": {"type": "profile", "points": [[-1, 0], [-1, 0], [1, 0]], "body_side": "left", "point": null, "normal": null}})"), "obstacle.points[1]"},
+      {patch(R"({"obstacle": {"type": "profile", "points": [[-1, 0], [1, 1], [1, -1], [-1, 1]], "body_side": "left", "point": null, "normal": null}})"), "crosses itself"},
+      {patch(R"({"obstacle": {"type": "profile", "points": [[-1, 0], [1, 0]], "body_side": "up", "point": null, "normal": null}})"), "obstacle.body_side"},
+      {patch(R"({"obstacle": {"type": "cirlce"}})"), "did you mean \"circle\""},
+      {patch(R"({"obstacle": {"type": "circle", "center": [0.5, -1], "radius": 1, "point": null, "normal": null}})"), "body.symmetry"},
+      {patch(R"({"load": {"type": "traction", "value": [0.1, -1]}})"), "body.symmetry"},
+      {patch(R"({"transform": {"rotate_degrees": "thirty"}})"), "transform.rotate_degrees"},
+      {patch(R"({"transform": {"rotate": 30}})"), "transform.rotate"},
+      {patch(R"({"transform": {"rotate_degrees": 30, "translate": [1, 0]}})"), "transform.translate"},
   };
 }
 
@@ -67,6 +96,32 @@ TEST_CASE("every bad scene names its field", "[input]") {
     CAPTURE(bad.text.substr(0, 200), bad.names);
     CHECK_THROWS_WITH(parse_scene(bad.text), Catch::Matchers::Contains(bad.names));
   }
+}
+
+TEST_CASE("names a mesh body does not have are errors naming the field, with a hint", "[input][gmsh]") {
+  const std::string disc = source_path("scenes/hertz_disc.geo");
+  const std::string base = R"({"material": {"E": 1, "nu": 0.3}, "body": {"shape": "mesh", "file": ")" + disc + R"("},
+      "obstacle": {"type": "plane", "point": [0, 0], "normal": [0, 1]}, )";
+  struct Case {
+    std::string rest, names;
+  };
+  const Case cases[] = {
+      {R"("load": {"type": "displacement", "boundary": "topp", "value": [0, -0.01]}, "contact": {"boundary": "arc"}})",
+       "load.boundary = \"topp\": not a physical curve of " + disc + "; valid: arc, top; did you mean \"top\"?"},
+      {R"("load": {"type": "displacement", "boundary": "top", "value": [0, -0.01]}, "contact": {"boundary": "rim"}})", "contact.boundary"},
+      {R"("load": [{"type": "displacement", "boundary": "top", "value": [0, -0.01]}, {"type": "gravity", "density": 1, "g": [0, -1], "region": "bdy"}], "contact": {"boundary": "arc"}})",
+       "load[1].region = \"bdy\""},
+      {R"("load": [{"type": "displacement", "boundary": "top", "value": [0, -0.01]}, {"type": "point", "point": "tip", "value": [0, -1]}], "contact": {"boundary": "arc"}})",
+       "load[1].point = \"tip\": not a physical point"},
+      {R"("load": {"type": "displacement", "boundary": "top", "value": [0, -0.01]}})", "contact.boundary is missing"},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.rest);
+    CHECK_THROWS_WITH(build_model(parse_scene(base + c.rest)), Catch::Matchers::Contains(c.names));
+  }
+  nlohmann::json symmetric = nlohmann::json::parse(base + R"("load": {"type": "displacement", "boundary": "top", "value": [null, -0.01]}, "contact": {"boundary": "arc"}})");
+  symmetric["body"]["symmetry"] = true;
+  CHECK_THROWS_WITH(build_model(parse_scene(symmetric.dump())), Catch::Matchers::Contains("no physical curve named \"symmetry\""));
 }
 
 TEST_CASE("misspelled keys come with the nearest valid one", "[input]") {
@@ -105,6 +160,7 @@ TEST_CASE("the CLI rejects missing files, bad options and unwritable outputs", "
       {"solve " + directory.path(""), "is a directory"},
       {"solve " + scene + " --json " + directory.path("no/such/dir/out.json"), "--json"},
       {"solve " + scene + " --csv " + directory.path("no/such/dir/p.csv"), "--csv"},
+      {"solve " + scene + " --vtu " + directory.path("no/such/dir/out.vtu"), "--vtu"},
       {"solve " + scene + " --backend ipot", "--backend"},
       {"solve " + scene + " --tol -1", "--tol"},
       {"solve " + scene + " --rho 0.5y", "--rho"},

@@ -1,5 +1,7 @@
 #include "test_support.hpp"
 
+#include "contactqp/solve.hpp"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -147,6 +149,20 @@ std::string patched_scene(const std::string& relative, const std::string& merge_
   nlohmann::json scene = nlohmann::json::parse(read_text(source_path(relative)));
   scene.merge_patch(nlohmann::json::parse(merge_patch));
   return scene.dump(2);
+}
+
+SceneRun run_scene(const Scene& scene) {
+  SceneRun run;
+  run.model = build_model(scene);
+  run.qp = assemble_qp(run.model);
+  run.result = solve(run.qp, scene.solver);
+  run.contact = summarize_contact(run.model, run.qp, run.result.u, run.result.lambda);
+  run.reactions = reactions(run.model, run.qp, run.result.u, run.result.lambda);
+  return run;
+}
+
+SceneRun run_scene(const std::string& relative, const std::string& merge_patch) {
+  return run_scene(parse_scene(patched_scene(relative, merge_patch), source_path(relative)));
 }
 
 }  // namespace contactqp::testing

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "contactqp/post.hpp"
 #include "contactqp/qp.hpp"
 #include "contactqp/scene.hpp"
 
@@ -61,5 +62,19 @@ class TemporaryDirectory {
 // The shipped scene with some JSON patched in, e.g. patch_scene("scenes/hertz.json",
 // R"({"material": {"E": 1e9}})") merges like JSON Merge Patch (RFC 7386).
 std::string patched_scene(const std::string& relative, const std::string& merge_patch);
+
+// A scene built, solved with its own solver options, and post-processed.
+struct SceneRun {
+  Model model;
+  QuadraticProgram qp;
+  SolveResult result;
+  ContactSummary contact;
+  std::vector<Reaction> reactions;
+};
+SceneRun run_scene(const Scene& scene);
+
+// A shipped scene (relative to the source tree) with a JSON merge patch, parsed as if it
+// were in scenes/ (so its mesh file resolves), solved.
+SceneRun run_scene(const std::string& relative, const std::string& merge_patch = "{}");
 
 }  // namespace contactqp::testing

@@ -1,0 +1,58 @@
+#include "gmsh_reader.hpp"
+
+#include <gmsh.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "contactqp/errors.hpp"
+#include "gmsh_model.hpp"
+
+namespace contactqp::detail {
+namespace {
+
+bool is_geo(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
+  return extension == ".geo";
+}
+
+// A .geo file is meshed here, with the scene's order and size factor on top of its own
+// options; a mesh the file itself made ("Mesh 2;") is remade so that those apply too.
+void mesh_geometry(const GmshFileRequest& request) {
+  gmsh::model::mesh::clear();
+  if (request.order > 0) gmsh::option::setNumber("Mesh.ElementOrder", request.order);
+  if (request.size_factor != 1) {
+    double factor = 1;
+    gmsh::option::getNumber("Mesh.MeshSizeFactor", factor);
+    gmsh::option::setNumber("Mesh.MeshSizeFactor", factor * request.size_factor);
+  }
+  gmsh::model::mesh::generate(2);
+  throw_if_gmsh_failed();
+}
+
+}  // namespace
+
+Mesh read_gmsh_file(const GmshFileRequest& request) {
+  // Gmsh opens a missing file as an empty model without a word: check first.
+  if (!std::ifstream(request.path)) throw InputError(request.path, "cannot be read: no such file, or no permission");
+  GmshSession session;
+  try {
+    gmsh::open(request.path);
+    throw_if_gmsh_failed();
+    if (is_geo(request.path)) mesh_geometry(request);
+  } catch (...) {
+    throw InputError(request.path, "could not be " + std::string(is_geo(request.path) ? "meshed" : "read") +
+                                       " by Gmsh: " + gmsh_error_text());
+  }
+  try {
+    return mesh_from_gmsh();
+  } catch (const std::runtime_error& error) {
+    throw InputError(request.path, std::string("cannot be used: ") + error.what());
+  } catch (...) {
+    throw InputError(request.path, "cannot be used: " + gmsh_error_text());
+  }
+}
+
+}  // namespace contactqp::detail

@@ -1,0 +1,20 @@
+// Bodies from Gmsh files: a .msh mesh as it is, or a .geo geometry meshed by Gmsh.
+#pragma once
+
+#include <string>
+
+#include "contactqp/mesh.hpp"
+
+namespace contactqp::detail {
+
+struct GmshFileRequest {
+  std::string path;        // a .msh (4.1 or 2.2, ASCII or binary) or .geo file
+  int order = 0;           // .geo: 1 or 2 overrides its Mesh.ElementOrder; 0 keeps it
+  double size_factor = 1;  // .geo: multiplies its Mesh.MeshSizeFactor
+};
+
+// The body of the file (see mesh_from_gmsh for what is kept and what is an error). Throws
+// InputError naming the file on anything Gmsh cannot read or contactqp cannot use.
+Mesh read_gmsh_file(const GmshFileRequest& request);
+
+}  // namespace contactqp::detail

@@ -1,0 +1,87 @@
+#include "graded_size.hpp"
+
+#include <gmsh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace contactqp::detail {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Area of an equilateral triangle of side h is kTriangleArea · h².
+constexpr double kTriangleArea = 0.4330127018922193;
+
+}  // namespace
+
+std::vector<double> breakpoints(double start, double end, const Intervals& fine, std::vector<double> extra) {
+  extra.push_back(start);
+  extra.push_back(end);
+  for (const auto& [from, to] : fine) {
+    extra.push_back(std::clamp(from, start, end));
+    extra.push_back(std::clamp(to, start, end));
+  }
+  std::sort(extra.begin(), extra.end());
+  extra.erase(std::unique(extra.begin(), extra.end(), [](double a, double b) { return std::abs(a - b) < 1e-9; }),
+              extra.end());
+  return extra;
+}
+
+bool inside(const Intervals& fine, double t) {
+  for (const auto& [from, to] : fine)
+    if (t > from && t < to) return true;
+  return false;
+}
+
+double total_length(const Intervals& fine) {
+  double length = 0;
+  for (const auto& [from, to] : fine) length += std::max(0.0, to - from);
+  return length;
+}
+
+void set_graded_size_field(const GradedSize& sizes, const std::vector<int>& fine_curves, double fine_length,
+                           int fallback_point) {
+  namespace field = gmsh::model::mesh::field;
+  const int distance = field::add("Distance");
+  if (!fine_curves.empty()) {
+    std::vector<double> curve_list(fine_curves.begin(), fine_curves.end());
+    field::setNumbers(distance, "CurvesList", curve_list);
+    field::setNumber(distance, "NumPointsPerCurve",
+                     std::max(20.0, 4.0 * fine_length / sizes.contact_size / fine_curves.size()));
+  } else {
+    // No curve can touch: refine at the point closest to the obstacle all the same.
+    field::setNumbers(distance, "PointsList", {static_cast<double>(fallback_point)});
+  }
+  const int size_field = field::add("MathEval");
+  char expression[256];
+  std::snprintf(expression, sizeof expression, "Min(%.17g, %.17g + %.17g * F%d)", sizes.size, sizes.contact_size,
+                sizes.grading, distance);
+  field::setString(size_field, "F", expression);
+  field::setAsBackgroundMesh(size_field);
+  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+  gmsh::option::setNumber("Mesh.Algorithm", 6);  // Frontal-Delaunay: well-shaped triangles
+}
+
+double estimate_graded_triangles(const GradedSize& sizes, double area, double fine_length) {
+  // The size grows linearly with the distance d from the fine curves; the band of the body
+  // at distance in [d, d + dd] has area about (ℓ + π d) dd, capped by the body's area.
+  const double cs = sizes.contact_size, h = sizes.size, gamma = sizes.grading;
+  double covered = 0, triangles = 0;
+  const double d_max = std::max(0.0, (h - cs) / gamma);
+  const int steps = 400;
+  for (int k = 0; k < steps && covered < area; ++k) {
+    const double d0 = d_max * k / steps, d1 = d_max * (k + 1) / steps;
+    const double d = 0.5 * (d0 + d1);
+    const double band = std::min((fine_length + kPi * d) * (d1 - d0), area - covered);
+    const double local = cs + gamma * d;
+    triangles += band / (kTriangleArea * local * local);
+    covered += band;
+  }
+  triangles += std::max(0.0, area - covered) / (kTriangleArea * h * h);
+  return triangles;
+}
+
+}  // namespace contactqp::detail

@@ -1,0 +1,137 @@
+// The body's mesh: the generated shapes refined along the part of the contact boundary that
+// faces an obstacle within the candidate distance, or a Gmsh file as it is.
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include "../contact/contact.hpp"
+#include "../mesh/gmsh_model.hpp"
+#include "../mesh/gmsh_reader.hpp"
+#include "../mesh/half_disc_mesher.hpp"
+#include "../mesh/rectangle_mesher.hpp"
+#include "contactqp/errors.hpp"
+#include "model_parts.hpp"
+
+namespace contactqp::detail {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A boundary curve x(t), t ∈ [t0, t1], with its outward unit normal.
+struct Curve {
+  std::function<Eigen::Vector2d(double)> point, outward;
+  double t0 = 0, t1 = 1;
+};
+
+// The parameters where the curve faces an obstacle within max_gap: each maximal run of such
+// samples, widened by `widen` on each side, overlapping runs merged. When no point
+// qualifies, the single point closest to an obstacle it faces.
+Intervals fine_intervals(const Curve& curve, const std::vector<ObstacleSpec>& obstacles, double max_gap, double widen) {
+  const int samples = 20000;
+  Intervals runs;
+  bool in_run = false;
+  double closest_t = curve.t0, closest_gap = std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= samples; ++k) {
+    const double t = curve.t0 + (curve.t1 - curve.t0) * k / samples;
+    const Eigen::Vector2d x = curve.point(t), outward = curve.outward(t);
+    bool near = false;
+    for (const ObstacleSpec& obstacle : obstacles) {
+      const ObstacleProjection p = project(obstacle, x);
+      if (outward.dot(p.normal) >= -1e-9) continue;
+      if (p.gap < closest_gap) {
+        closest_gap = p.gap;
+        closest_t = t;
+      }
+      near = near || p.gap <= max_gap;
+    }
+    if (near && !in_run) runs.emplace_back(t, t);
+    if (near) runs.back().second = t;
+    in_run = near;
+  }
+  if (runs.empty()) return {{closest_t, closest_t}};
+  Intervals merged;
+  for (const auto& [from, to] : runs) {
+    const double a = std::max(curve.t0, from - widen), b = std::min(curve.t1, to + widen);
+    if (!merged.empty() && a <= merged.back().second) merged.back().second = std::max(merged.back().second, b);
+    else merged.emplace_back(a, b);
+  }
+  return merged;
+}
+
+void refuse_oversized(double estimate, const BuildOptions& options) {
+  if (estimate > static_cast<double>(options.max_elements))
+    throw InputError("body.mesh", "would have about " + std::to_string(static_cast<long long>(estimate)) +
+                                      " triangles, more than the limit of " + std::to_string(options.max_elements) +
+                                      "; coarsen body.mesh.size or contact_size, or raise --max-elements");
+}
+
+// Gmsh errors while meshing a generated shape are bad input too (sizes it cannot honour).
+template <class Mesher>
+Mesh generate(const Mesher& mesher) {
+  try {
+    return mesher();
+  } catch (const std::exception& error) {
+    throw InputError("body.mesh", std::string("could not be meshed: ") + error.what());
+  } catch (...) {
+    throw InputError("body.mesh", "could not be meshed: " + gmsh_error_text());
+  }
+}
+
+// The fields both generated shapes' requests share.
+template <class Request>
+void copy_mesh_spec(const BodySpec& body, Request& request) {
+  request.symmetry = body.symmetry;
+  request.size = body.mesh.size;
+  request.contact_size = body.mesh.contact_size;
+  request.grading = body.mesh.grading;
+  request.order = body.mesh.order;
+}
+
+Mesh mesh_half_disc_body(const Scene& scene, double max_gap, const BuildOptions& options) {
+  const BodySpec& body = scene.body;
+  HalfDiscMeshRequest request;
+  request.radius = body.radius;
+  copy_mesh_spec(body, request);
+  // The arc P(φ) = (R sin φ, R − R cos φ); see half_disc_mesher.hpp.
+  const double R = body.radius;
+  Curve arc{[R](double phi) { return Eigen::Vector2d(R * std::sin(phi), R - R * std::cos(phi)); },
+            [](double phi) { return Eigen::Vector2d(std::sin(phi), -std::cos(phi)); },
+            body.symmetry ? 0.0 : -kPi / 2, kPi / 2};
+  request.fine = fine_intervals(arc, scene.obstacles, max_gap, body.mesh.contact_size / R);
+  refuse_oversized(estimate_half_disc_triangles(request), options);
+  return generate([&] { return mesh_half_disc(request); });
+}
+
+Mesh mesh_rectangle_body(const Scene& scene, double max_gap, const BuildOptions& options) {
+  const BodySpec& body = scene.body;
+  RectangleMeshRequest request;
+  request.width = body.width;
+  request.height = body.height;
+  copy_mesh_spec(body, request);
+  request.fine_side = scene.contact.boundary;
+  for (const RectangleSide& side : rectangle_sides(body.width, body.height, body.symmetry)) {
+    if (side.name != request.fine_side) continue;
+    const Eigen::Vector2d a = side.a, b = side.b, d = b - a;
+    const Eigen::Vector2d outward = Eigen::Vector2d(d.y(), -d.x()).normalized();
+    Curve line{[a, d](double t) { return Eigen::Vector2d(a + t * d); }, [outward](double) { return outward; }};
+    request.fine = fine_intervals(line, scene.obstacles, max_gap, body.mesh.contact_size / d.norm());
+  }
+  refuse_oversized(estimate_rectangle_triangles(request), options);
+  return generate([&] { return mesh_rectangle(request); });
+}
+
+}  // namespace
+
+Mesh mesh_body(const Scene& scene, double max_gap, const BuildOptions& options) {
+  Mesh mesh;
+  if (scene.body.shape == "half_disc") mesh = mesh_half_disc_body(scene, max_gap, options);
+  else if (scene.body.shape == "rectangle") mesh = mesh_rectangle_body(scene, max_gap, options);
+  else mesh = read_gmsh_file({scene.body.file, scene.body.mesh.order, scene.body.mesh.size_factor});
+  if (mesh.n_elements() > options.max_elements)
+    throw InputError("body.mesh", "has " + std::to_string(mesh.n_elements()) + " triangles, more than the limit of " +
+                                      std::to_string(options.max_elements) + "; raise --max-elements");
+  return mesh;
+}
+
+}  // namespace contactqp::detail

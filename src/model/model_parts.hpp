@@ -1,0 +1,31 @@
+// The steps of build_model (model.cpp composes them), each in its own file.
+#pragma once
+
+#include "contactqp/model.hpp"
+
+namespace contactqp::detail {
+
+// body_mesh.cpp: the body's mesh in the scene's own frame — a generated shape refined where
+// contact can happen (initial gap ≤ max_gap), or a Gmsh file. InputError when it would
+// exceed options.max_elements or cannot be made.
+Mesh mesh_body(const Scene& scene, double max_gap, const BuildOptions& options);
+
+// mesh_names.cpp: every boundary, region and point the scene names exists in the mesh (the
+// names of a mesh body are known only now); the symmetry boundary of a mesh body lies on x = 0.
+void check_mesh_names(const Scene& scene, const Mesh& mesh);
+
+// boundary_conditions.cpp: free_index, prescribed and DOF frames from the displacement loads
+// and the symmetry plane. `rotation` is the scene's transform: with a rotation, prescribed
+// components stay along the scene's own axes.
+void apply_displacement_conditions(Model& model, const Scene& local_scene, const Eigen::Matrix2d& rotation);
+
+// ../fe/loads.cpp: consistent nodal forces (2·n_nodes, global x, y, for the body's thickness)
+// of the force loads of `scene` on `mesh` — both already in the global frame. Point loads act
+// at `point_nodes[l]` for load l (chosen in the scene's own frame, see point_load_nodes).
+Eigen::VectorXd nodal_forces(const Scene& scene, const Mesh& mesh, const std::vector<int>& point_nodes);
+
+// ../fe/loads.cpp: the node each point load acts at (−1 for other loads): the nearest node to
+// its `at`, or its named point. Adds a warning when that node is far from `at`.
+std::vector<int> point_load_nodes(const Scene& scene, const Mesh& mesh, std::vector<std::string>& warnings);
+
+}  // namespace contactqp::detail

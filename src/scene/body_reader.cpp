@@ -1,0 +1,115 @@
+// The `body` section: a generated shape (half disc, rectangle) with its mesh request, or a
+// Gmsh file.
+#include <algorithm>
+#include <filesystem>
+
+#include "contactqp/errors.hpp"
+#include "readers.hpp"
+
+namespace contactqp::detail {
+namespace {
+
+const std::vector<std::string> kShapes = {"half_disc", "rectangle", "mesh"};
+
+MeshSpec read_generated_mesh(JsonObject mesh) {
+  MeshSpec spec;
+  spec.size = mesh.number("size");
+  require(spec.size > 0, mesh.path_of("size"), spec.size, "must be positive");
+  spec.contact_size = mesh.number("contact_size");
+  require(spec.contact_size > 0, mesh.path_of("contact_size"), spec.contact_size, "must be positive");
+  require(spec.contact_size <= spec.size, mesh.path_of("contact_size"), spec.contact_size,
+          "must not exceed body.mesh.size = " + format_value(spec.size));
+  if (auto grading = mesh.optional_number("grading")) {
+    spec.grading = *grading;
+    require(spec.grading > 0 && spec.grading <= 1, mesh.path_of("grading"), spec.grading, "must lie in (0, 1]");
+  }
+  if (auto order = mesh.optional_integer("order")) {
+    spec.order = *order;
+    require(spec.order == 1 || spec.order == 2, mesh.path_of("order"), spec.order, "must be 1 or 2");
+  }
+  mesh.finish();
+  return spec;
+}
+
+// A .geo file is meshed by Gmsh when the scene is solved: the scene may ask for quadratic
+// elements and scale every size; a .msh file is the mesh as it is.
+MeshSpec read_geo_options(JsonObject mesh) {
+  MeshSpec spec;
+  spec.order = 0;  // whatever the .geo file says (Mesh.ElementOrder), 1 by default
+  if (auto order = mesh.optional_integer("order")) {
+    spec.order = *order;
+    require(spec.order == 1 || spec.order == 2, mesh.path_of("order"), spec.order, "must be 1 or 2");
+  }
+  if (auto factor = mesh.optional_number("size_factor")) {
+    spec.size_factor = *factor;
+    require(spec.size_factor > 0, mesh.path_of("size_factor"), spec.size_factor, "must be positive");
+  }
+  mesh.finish();
+  return spec;
+}
+
+std::string lower_extension(const std::string& file) {
+  std::string extension = std::filesystem::path(file).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
+  return extension;
+}
+
+void read_mesh_file(JsonObject& body, BodySpec& spec, const std::string& source) {
+  const std::string written = body.string("file");
+  const std::string path = body.path_of("file");
+  const std::string extension = lower_extension(written);
+  if (extension != ".msh" && extension != ".geo")
+    throw InputError(path, "= \"" + written + "\": must be a Gmsh .msh or .geo file");
+  namespace fs = std::filesystem;
+  fs::path file(written);
+  if (file.is_relative()) file = fs::path(source).parent_path() / file;
+  spec.file = file.lexically_normal().string();
+  std::error_code error;
+  if (!fs::is_regular_file(file, error))
+    throw InputError(path, "= \"" + written + "\": no such file (looked for " + spec.file +
+                               ", relative to the scene file's directory)");
+  spec.mesh = MeshSpec{};
+  spec.mesh.order = 0;  // the element type Gmsh makes or the file holds decides
+  if (extension == ".geo") {
+    if (body.has("mesh")) spec.mesh = read_geo_options(body.object("mesh"));
+  } else {
+    if (body.has("mesh"))
+      throw InputError(body.path_of("mesh"), "is not valid for a .msh file: the file is the mesh (its element type decides the order)");
+  }
+}
+
+}  // namespace
+
+BodySpec read_body(JsonObject body, const std::string& source) {
+  BodySpec spec;
+  spec.shape = body.string("shape");
+  if (std::find(kShapes.begin(), kShapes.end(), spec.shape) == kShapes.end())
+    unknown_choice(body.path_of("shape"), spec.shape, "shape", kShapes);
+  if (spec.shape == "half_disc") {
+    spec.radius = body.number("radius");
+    require(spec.radius > 0, body.path_of("radius"), spec.radius, "must be positive");
+  } else if (spec.shape == "rectangle") {
+    spec.width = body.number("width");
+    require(spec.width > 0, body.path_of("width"), spec.width, "must be positive");
+    spec.height = body.number("height");
+    require(spec.height > 0, body.path_of("height"), spec.height, "must be positive");
+  }
+  spec.symmetry = body.optional_boolean("symmetry").value_or(false);
+  if (auto thickness = body.optional_number("thickness")) {
+    spec.thickness = *thickness;
+    require(spec.thickness > 0, body.path_of("thickness"), spec.thickness, "must be positive");
+  }
+  if (spec.shape == "mesh") {
+    read_mesh_file(body, spec, source);
+  } else {
+    spec.mesh = read_generated_mesh(body.object("mesh"));
+    const double extent = spec.shape == "half_disc" ? spec.radius : std::min(spec.width, spec.height);
+    require(spec.mesh.contact_size <= extent, body.path_of("mesh.contact_size"), spec.mesh.contact_size,
+            "must not exceed the body's " + std::string(spec.shape == "half_disc" ? "radius" : "smaller side") +
+                " = " + format_value(extent));
+  }
+  body.finish();
+  return spec;
+}
+
+}  // namespace contactqp::detail

@@ -1,0 +1,46 @@
+// The readers of the scene's sections (scene.cpp composes them). Each consumes one JSON
+// object through JsonObject, so that every key is checked and every error names its field.
+#pragma once
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "contactqp/scene.hpp"
+#include "json_reader.hpp"
+
+namespace contactqp::detail {
+
+// [x, y] as a vector, or InputError naming `path`.
+Eigen::Vector2d read_vector(const nlohmann::json& value, const std::string& path);
+
+// "a, b, c"
+std::string join(const std::vector<std::string>& words);
+
+// Throws `path = "value": unknown <what>; valid: a, b; did you mean "a"?`.
+[[noreturn]] void unknown_choice(const std::string& path, const std::string& value, const std::string& what,
+                                 const std::vector<std::string>& valid);
+
+// `body`: the shape and its mesh. `source` is the scene file, against whose directory a mesh
+// file is resolved.
+BodySpec read_body(JsonObject body, const std::string& source);
+
+// One entry of `load`; `path` is its field path ("load" or "load[2]").
+LoadSpec read_load(JsonObject load, const BodySpec& body);
+
+// One entry of `obstacle`.
+ObstacleSpec read_obstacle(JsonObject obstacle);
+
+// `transform`.
+TransformSpec read_transform(JsonObject transform);
+
+// With body.symmetry, InputError unless the rest of the scene is mirror-symmetric about x = 0
+// (in the scene's own frame, before its transform).
+void check_symmetry(const Scene& scene);
+
+// InputError unless `name` is a boundary of a generated shape (mesh bodies are checked once
+// their mesh is read).
+void require_boundary(const std::string& name, const BodySpec& body, const std::string& path);
+
+}  // namespace contactqp::detail

@@ -1,0 +1,64 @@
+// `contactqp solve --vtu`: the file of every shipped scene reads back in VTK (Debian's
+// python3-vtk9 under /usr/bin/python3, tests/tools/read_vtu.py) with the named arrays, and
+// agrees with the result JSON.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "test_support.hpp"
+
+using namespace contactqp::testing;
+using nlohmann::json;
+
+namespace {
+
+std::vector<std::string> shipped_scenes() {
+  std::vector<std::string> scenes;
+  for (const auto& entry : std::filesystem::directory_iterator(source_path("scenes")))
+    if (entry.path().extension() == ".json") scenes.push_back(entry.path().filename().string());
+  std::sort(scenes.begin(), scenes.end());
+  return scenes;
+}
+
+void check_vtu_of(const std::string& scene) {
+  CAPTURE(scene);
+  TemporaryDirectory directory;
+  const std::string vtu = directory.path("out.vtu"), result_path = directory.path("out.json");
+  const CliRun run = run_cli("solve " + source_path("scenes/" + scene) + " --json " + result_path + " --vtu " + vtu);
+  REQUIRE(run.exit_status == 0);
+  const json result = json::parse(read_text(result_path));
+  const std::string read_back = directory.path("vtu.json");
+  const std::string command = "/usr/bin/python3 " + source_path("tests/tools/read_vtu.py") + " " + vtu + " > " + read_back;
+  REQUIRE(std::system(command.c_str()) == 0);
+  const json grid = json::parse(read_text(read_back));
+  CHECK(grid["points"] == result["nodes"]);
+  CHECK(grid["cells"] == result["elements"]);
+  CHECK(grid["cell_types"] == json::array({result["element_order"] == 1 ? 5 : 22}));  // VTK_TRIANGLE, VTK_QUADRATIC_TRIANGLE
+  const std::pair<const char*, int> arrays[] = {{"displacement", 3}, {"sigma_xx", 1}, {"sigma_yy", 1}, {"sigma_xy", 1},
+                                                {"sigma_zz", 1}, {"von_mises", 1}, {"contact_pressure", 1},
+                                                {"contact_force", 3}, {"gap", 1}, {"contact_boundary", 1}};
+  for (const auto& [name, components] : arrays) {
+    CAPTURE(name);
+    REQUIRE(grid["arrays"].contains(name));
+    const json& array = grid["arrays"][name];
+    CHECK(array["components"] == components);
+    CHECK(array["tuples"] == result["nodes"]);
+    CHECK(array["finite"] == true);
+  }
+  const json& arrays_read = grid["arrays"];
+  CHECK(arrays_read["contact_pressure"]["max"][0].get<double>() ==
+        Approx(result["contact"]["max_pressure"].get<double>()).epsilon(1e-12));
+  CHECK(arrays_read["displacement"]["min"][2] == 0.0);  // a 2D field, z = 0 for ParaView
+  CHECK(arrays_read["displacement"]["max"][2] == 0.0);
+  CHECK(arrays_read["von_mises"]["min"][0].get<double>() >= 0.0);
+  CHECK(arrays_read["contact_boundary"]["max"][0] == 1.0);
+}
+
+}  // namespace
+
+TEST_CASE("the VTU of every shipped scene reads back in VTK with the named arrays", "[unit][vtu]") {
+  for (const std::string& scene : shipped_scenes())
+    if (scene != "hertz-large.json") check_vtu_of(scene);
+}
+
+TEST_CASE("the VTU of the large Hertz scene reads back in VTK", "[.slow][vtu]") { check_vtu_of("hertz-large.json"); }
