@@ -23,7 +23,7 @@ void rotate_to_dof_frames(const Model& model, const int* v, int npe, Eigen::Matr
 QuadraticProgram assemble_qp(Model& model) {
   Stopwatch clock;
   const Mesh& mesh = model.mesh;
-  const Eigen::Matrix3d D = elasticity_matrix(model.scene.model, model.scene.material);
+  const ElementLaw law = element_law(model.scene);
   const double thickness = model.scene.body.thickness;
   const int npe = mesh.nodes_per_element();
 
@@ -40,7 +40,7 @@ QuadraticProgram assemble_qp(Model& model) {
       dofs[2 * i] = 2 * v[i];
       dofs[2 * i + 1] = 2 * v[i] + 1;
     }
-    Eigen::MatrixXd Ke = element_stiffness(coordinates.data(), mesh.order, D, thickness);
+    Eigen::MatrixXd Ke = element_stiffness(coordinates.data(), mesh.order, law, thickness);
     rotate_to_dof_frames(model, v, npe, Ke);
     for (int i = 0; i < 2 * npe; ++i) {
       const int row = model.free_index[dofs[i]];

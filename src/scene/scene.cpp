@@ -133,6 +133,10 @@ std::string to_string(PlaneModel model) {
   return model == PlaneModel::PlaneStrain ? "plane_strain" : "plane_stress";
 }
 
+std::string to_string(Formulation formulation) {
+  return formulation == Formulation::Mixed ? "mixed" : "displacement";
+}
+
 std::vector<std::string> boundary_names(const BodySpec& body) {
   std::vector<std::string> names;
   if (body.shape == "half_disc") names = {"arc", "top"};
@@ -195,6 +199,9 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   material.finish();
 
   scene.body = detail::read_body(root.object("body"), source);
+  // Plane stress has a finite bulk stiffness E/(2(1 − ν)) whatever ν: nothing locks, nothing to mix.
+  if (scene.body.formulation == Formulation::Mixed && scene.model != PlaneModel::PlaneStrain)
+    throw InputError("body.formulation", "= \"mixed\": only for \"model\": \"plane_strain\" (plane stress does not lock as ν → 0.5)");
   for (const auto& [item, path] : one_or_many(root.value("load"), "load"))
     scene.loads.push_back(detail::read_load(JsonObject(*item, path), scene.body));
   for (const auto& [item, path] : one_or_many(root.value("obstacle"), "obstacle"))
