@@ -8,13 +8,17 @@
 // rule is the same for every backend (a no-op for the projection methods):
 //   zero λ_i when s_i > √tol · L   (clearly positive: beyond the √tol band in which a
 //                                    degenerate active row may sit, ARCHITECTURE.md's Hölder bound)
-// and keep the change only if the certificate's relative stationarity residual, the one
-// residual it can worsen, stays within max(tol, its value before) — complementarity and the
-// duality gap only improve, primal feasibility does not change. So the result is certified
-// as before, and a caller's certify() sees the zeros.
+// row by row, smallest λ_i first, as long as the certificate's stationarity residual — the one
+// residual it can worsen — stays within max(tol, its value before) relative to the force
+// scale; complementarity and the duality gap only improve, primal feasibility does not
+// change. A row whose multiplier is too large to drop keeps it. So the result is certified as
+// before, and a caller's certify() sees the zeros.
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "backends.hpp"
+#include "cleanup.hpp"
 #include "contactqp/certificate.hpp"
 
 namespace contactqp::detail {
@@ -22,31 +26,43 @@ namespace {
 
 double inf_norm_of(const VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
 
-double relative_stationarity(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda) {
-  const double F = force_scale(qp, u, lambda);
-  const double r = inf_norm_of(VectorXd(qp.K * u - qp.f + qp.B.transpose() * lambda));
-  return F > 0 ? r / F : r;
-}
+using RowMajorMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
 }  // namespace
 
 void zero_separated_multipliers(const QuadraticProgram& qp, SolveResult& result, double tol) {
   if (result.status != Status::Converged || result.lambda.size() == 0) return;
-  const VectorXd slack = qp.g - qp.B * result.u;
-  const double threshold = std::sqrt(tol) * length_scale(qp, result.u);
-  VectorXd cleaned = result.lambda;
+  const VectorXd& u = result.u;
+  VectorXd& lambda = result.lambda;
+  const VectorXd slack = qp.g - qp.B * u;
+  const double threshold = std::sqrt(tol) * length_scale(qp, u);
+  std::vector<int> rows;
+  for (int i = 0; i < lambda.size(); ++i)
+    if (lambda[i] != 0.0 && slack[i] > threshold) rows.push_back(i);
+  if (rows.empty()) return;
+
+  // The stationarity residual r = Ku − f + Bᵀλ, and the bound each of its entries must keep:
+  // the relative residual it had, or tol, measured by the part of the force scale that the
+  // zeros cannot lower (‖f‖∞, ‖Ku‖∞).
+  const VectorXd Ku = qp.K * u;
+  const VectorXd Btl = qp.B.transpose() * lambda;
+  VectorXd r = Ku - qp.f + Btl;
+  const double fixed_force = std::max(inf_norm_of(qp.f), inf_norm_of(Ku));
+  const double force = std::max(fixed_force, inf_norm_of(Btl));
+  const double bound = std::max(tol * fixed_force, force > 0 ? inf_norm_of(r) * fixed_force / force : 0.0);
+  const RowMajorMatrix B = qp.B;
+  std::sort(rows.begin(), rows.end(), [&](int a, int b) { return lambda[a] < lambda[b]; });
   int zeroed = 0;
-  for (int i = 0; i < cleaned.size(); ++i)
-    if (cleaned[i] != 0.0 && slack[i] > threshold) {
-      cleaned[i] = 0.0;
-      ++zeroed;
-    }
-  if (zeroed == 0) return;
-  const double before = relative_stationarity(qp, result.u, result.lambda);
-  const double after = relative_stationarity(qp, result.u, cleaned);
-  if (!(after <= std::max(tol, before))) return;  // the multipliers were not negligible: keep them
-  result.lambda = cleaned;
-  result.diagnostics["zeroed_multipliers"] = zeroed;
+  for (int i : rows) {
+    bool within = true;
+    for (RowMajorMatrix::InnerIterator it(B, i); it && within; ++it)
+      within = std::abs(r[it.col()] - lambda[i] * it.value()) <= bound;
+    if (!within) continue;
+    for (RowMajorMatrix::InnerIterator it(B, i); it; ++it) r[it.col()] -= lambda[i] * it.value();
+    lambda[i] = 0.0;
+    ++zeroed;
+  }
+  if (zeroed > 0) result.diagnostics["zeroed_multipliers"] = zeroed;
 }
 
 bool overflows(const QuadraticProgram& qp, const SolveResult& result) {

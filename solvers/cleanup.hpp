@@ -6,7 +6,7 @@
 namespace contactqp::detail {
 
 // For a converged result: λ_i = 0 exactly where row i clearly separates (slack > √tol · L),
-// unless that would raise the relative stationarity residual above max(tol, its value).
+// smallest first, as long as the relative stationarity residual stays within max(tol, its value).
 // Records the count as the diagnostic "zeroed_multipliers".
 void zero_separated_multipliers(const QuadraticProgram& qp, SolveResult& result, double tol);
 

@@ -1,7 +1,9 @@
 // Assembly of K and f over the free DOFs, and of the contact rows.
 #include <Eigen/SparseCore>
+#include <cmath>
 
 #include "../contact/contact.hpp"
+#include "contactqp/errors.hpp"
 #include "contactqp/model.hpp"
 
 namespace contactqp {
@@ -65,6 +67,14 @@ QuadraticProgram assemble_qp(Model& model) {
   qp.K.setFromTriplets(triplets.begin(), triplets.end());
   qp.K.makeCompressed();
   triplets = {};
+  // Units so far from one that a number overflows are bad input, named as the scene wrote it.
+  for (int k = 0; k < qp.K.nonZeros(); ++k)
+    if (!std::isfinite(qp.K.valuePtr()[k]))
+      throw InputError("material.E", "= " + detail::format_value(model.scene.material.E) +
+                                         ": the stiffness matrix overflows double precision; use other units");
+  if (!qp.f.allFinite())
+    throw InputError("load", "gives a load vector that overflows double precision (forces or prescribed displacements "
+                             "too large for these units); use other units");
   detail::add_contact_rows(model, qp);
   model.timings.add("assemble", clock.seconds());
   return qp;

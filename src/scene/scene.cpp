@@ -3,7 +3,9 @@
 #include "contactqp/scene.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -172,10 +174,13 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   json document;
   try {
     document = json::parse(json_text);
-  } catch (const json::parse_error& error) {
+  } catch (const json::exception& error) {  // a syntax error, or a number beyond double range (1e999)
     std::string what = error.what();
     const auto bracket = what.find("] ");
     if (bracket != std::string::npos) what = what.substr(bracket + 2);
+    // The parser quotes what it read last, which may be any bytes: keep the message readable.
+    for (char& c : what)
+      if (static_cast<unsigned char>(c) >= 0x80) c = '?';
     throw InputError(source, "is not valid JSON: " + what);
   }
   Scene scene;
@@ -196,6 +201,11 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   require(scene.material.E > 0, "material.E", scene.material.E, "must be positive");
   scene.material.nu = material.number("nu");
   require(scene.material.nu > -1 && scene.material.nu < 0.5, "material.nu", scene.material.nu, "must lie in (-1, 0.5)");
+  // The largest entry of D, E(1 − ν)/((1 + ν)(1 − 2ν)), and the bulk modulus must be numbers.
+  const double nu = scene.material.nu, stiffest = scene.material.E / ((1 + nu) * (1 - 2 * nu)) * std::max(1.0, 1 - nu);
+  require(std::isfinite(stiffest) && std::isfinite(scene.material.E / (3 * (1 - 2 * nu))), "material.E", scene.material.E,
+          "overflows double precision in the elasticity matrix with material.nu = " + detail::format_value(nu) +
+              "; use other units");
   material.finish();
 
   scene.body = detail::read_body(root.object("body"), source);
@@ -219,7 +229,7 @@ Scene load_scene(const std::string& path) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error)) throw InputError(path, "is a directory, not a scene file");
   std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path, "cannot be read: no such file, or no permission");
+  if (!file) throw InputError(path, "cannot be read: " + std::string(std::strerror(errno)));
   std::ostringstream text;
   text << file.rdbuf();
   if (file.bad()) throw InputError(path, "cannot be read");

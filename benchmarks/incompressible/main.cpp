@@ -1,0 +1,139 @@
+// Hertz accuracy as ν → 0.5 in plane strain, for 3-node triangles, 6-node triangles and the
+// mixed formulation (body.formulation "mixed"): one row per (variant, ν), written to
+// incompressible.csv with context.json beside it. plot.py draws the errors against 0.5 − ν
+// and prints the README's table.
+//
+//   ./build/benchmarks/incompressible/bench_incompressible [--out DIR] [--quick]
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "contactqp/io.hpp"
+#include "contactqp/post.hpp"
+#include "contactqp/solve.hpp"
+
+using namespace contactqp;
+
+namespace {
+
+// A discretisation: a shipped scene, its formulation, and optionally another contact size.
+struct Variant {
+  std::string name, scene, formulation;
+  double contact_size = 0;  // 0: the scene's
+};
+
+std::vector<Variant> variants(bool quick) {
+  if (quick) return {{"order2", "scenes/hertz-order2.json", "displacement"}, {"mixed", "scenes/hertz-order2.json", "mixed"}};
+  return {
+      {"order1", "scenes/hertz.json", "displacement"},                    // 3 730 DOFs, the shipped Hertz scene
+      {"order2", "scenes/hertz-order2.json", "displacement"},             // 894 DOFs
+      {"mixed", "scenes/hertz-order2.json", "mixed"},                     // the same mesh, mixed
+      {"order2_fine", "scenes/hertz-order2.json", "displacement", 0.004},  // 2 710 DOFs
+      {"mixed_fine", "scenes/hertz-order2.json", "mixed", 0.004},
+  };
+}
+
+std::vector<double> poisson_ratios(bool quick) {
+  if (quick) return {0.499};
+  return {0.3, 0.45, 0.49, 0.499, 0.4999};
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream file(path);
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+std::string command_output(const std::string& command) {
+  std::string out;
+  if (FILE* pipe = popen(command.c_str(), "r")) {
+    char buffer[256];
+    while (fgets(buffer, sizeof buffer, pipe)) out += buffer;
+    pclose(pipe);
+  }
+  while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
+  return out;
+}
+
+std::string context_json() {
+  char date[64];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  const nlohmann::json context = {
+      {"benchmark", "incompressible"},
+      {"git_revision", command_output("git -C " CONTACTQP_SOURCE_DIR " rev-parse HEAD 2>/dev/null")},
+      {"git_dirty", !command_output("git -C " CONTACTQP_SOURCE_DIR " status --porcelain 2>/dev/null").empty()},
+      {"compiler", std::string("g++ ") + __VERSION__},
+      {"build_type", CONTACTQP_BUILD_TYPE},
+      {"cores", std::thread::hardware_concurrency()},
+      {"date", date},
+      {"backend", "nlopt"},
+      {"scenes", {"scenes/hertz.json", "scenes/hertz-order2.json"}}};
+  return context.dump(2) + "\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string out_directory = "out/incompressible";
+  bool quick = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string argument = argv[i];
+    if (argument == "--out" && i + 1 < argc) out_directory = argv[++i];
+    else if (argument == "--quick") quick = true;
+    else {
+      std::cerr << "usage: bench_incompressible [--out DIR] [--quick]\n";
+      return 2;
+    }
+  }
+  std::error_code error;
+  std::filesystem::create_directories(out_directory, error);
+  const std::string csv_path = out_directory + "/incompressible.csv";
+  check_output_path(csv_path, "--out");
+
+  std::ostringstream csv;
+  csv.precision(10);
+  csv << "variant,order,formulation,contact_size,nu,dofs,constraints,status,iterations,force,error_half_width,"
+         "error_max_pressure,error_l2,seconds\n";
+  for (const Variant& variant : variants(quick)) {
+    const std::string path = CONTACTQP_SOURCE_DIR "/" + variant.scene;
+    const std::string text = read_text(path);
+    for (double nu : poisson_ratios(quick)) {
+      Stopwatch clock;
+      Scene scene = parse_scene(text, path);
+      scene.material.nu = nu;
+      scene.body.formulation = variant.formulation == "mixed" ? Formulation::Mixed : Formulation::Displacement;
+      if (variant.contact_size > 0) scene.body.mesh.contact_size = variant.contact_size;
+      // The answer does not depend on the backend (tests/cross_backend); L-BFGS is the fastest.
+      scene.solver.backend = Backend::Nlopt;
+      scene.solver.max_iterations = 100000;
+      Model model = build_model(scene);
+      const QuadraticProgram qp = assemble_qp(model);
+      const SolveResult result = solve(qp, scene.solver);
+      const ContactSummary contact = summarize_contact(model, qp, result.u, result.lambda);
+      const auto hertz = compare_with_hertz(model, contact);
+      const double seconds = clock.seconds();
+      csv << variant.name << ',' << model.mesh.order << ',' << variant.formulation << ',' << scene.body.mesh.contact_size
+          << ',' << nu << ',' << qp.n_dofs() << ',' << qp.n_constraints() << ',' << to_string(result.status) << ','
+          << result.iterations << ',' << contact.total_force << ',' << (hertz ? hertz->error_half_width : NAN) << ','
+          << (hertz ? hertz->error_max_pressure : NAN) << ',' << (hertz ? hertz->error_l2 : NAN) << ',' << seconds
+          << '\n';
+      std::cout << variant.name << " nu " << nu << ": " << qp.n_dofs() << " DOFs, b "
+                << (hertz ? 100 * hertz->error_half_width : NAN) << "%, p0 " << (hertz ? 100 * hertz->error_max_pressure : NAN)
+                << "%, L2 " << (hertz ? 100 * hertz->error_l2 : NAN) << "%, " << to_string(result.status) << std::endl;
+    }
+  }
+  write_file_atomically(csv_path, csv.str());
+  write_file_atomically(out_directory + "/context.json", context_json());
+  std::cout << "wrote " << csv_path << " and context.json\n";
+  return 0;
+}
