@@ -1,6 +1,7 @@
 // Assembly of K and f over the free DOFs, and of the contact rows.
 #include <Eigen/SparseCore>
 #include <cmath>
+#include <limits>
 
 #include "../contact/contact.hpp"
 #include "contactqp/errors.hpp"
@@ -18,6 +19,31 @@ void rotate_to_dof_frames(const Model& model, const int* v, int npe, Eigen::Matr
   Eigen::MatrixXd T = Eigen::MatrixXd::Identity(2 * npe, 2 * npe);
   for (int i = 0; i < npe; ++i) T.block<2, 2>(2 * i, 2 * i) = dof_frame(model, v[i]);
   Ke = T.transpose() * Ke * T;
+}
+
+// Units so far from one that K or f leave double precision are bad input, named as the scene
+// wrote it: beyond the largest double they overflow to Inf; below DBL_MIN/DBL_EPSILON the
+// entries within round-off of the largest are subnormal and lose digits (E = 1e-320 gave
+// "converged" with P = 0).
+void refuse_unrepresentable(const Model& model, const QuadraticProgram& qp) {
+  constexpr double kSmallest = std::numeric_limits<double>::min() / std::numeric_limits<double>::epsilon();
+  const Eigen::Map<const Eigen::VectorXd> k_values(qp.K.valuePtr(), qp.K.nonZeros());
+  const double largest_k = k_values.size() ? k_values.cwiseAbs().maxCoeff() : 1.0;
+  const double largest_f = qp.f.size() ? qp.f.cwiseAbs().maxCoeff() : 0.0;
+  const double thickness = model.scene.body.thickness;
+  const std::string stiffness =
+      "= " + detail::format_value(model.scene.material.E) +
+      (thickness != 1 ? " (body.thickness = " + detail::format_value(thickness) + ")" : std::string());
+  if (!k_values.allFinite())
+    throw InputError("material.E", stiffness + ": the stiffness matrix overflows double precision; use other units");
+  if (largest_k < kSmallest)
+    throw InputError("material.E", stiffness + ": the stiffness matrix underflows double precision; use other units");
+  if (!qp.f.allFinite())
+    throw InputError("load", "gives a load vector that overflows double precision (forces or prescribed displacements "
+                             "too large for these units); use other units");
+  if (largest_f > 0 && largest_f < kSmallest)
+    throw InputError("load", "gives a load vector that underflows double precision (forces or prescribed displacements "
+                             "too small for these units); use other units");
 }
 
 }  // namespace
@@ -67,14 +93,7 @@ QuadraticProgram assemble_qp(Model& model) {
   qp.K.setFromTriplets(triplets.begin(), triplets.end());
   qp.K.makeCompressed();
   triplets = {};
-  // Units so far from one that a number overflows are bad input, named as the scene wrote it.
-  for (int k = 0; k < qp.K.nonZeros(); ++k)
-    if (!std::isfinite(qp.K.valuePtr()[k]))
-      throw InputError("material.E", "= " + detail::format_value(model.scene.material.E) +
-                                         ": the stiffness matrix overflows double precision; use other units");
-  if (!qp.f.allFinite())
-    throw InputError("load", "gives a load vector that overflows double precision (forces or prescribed displacements "
-                             "too large for these units); use other units");
+  refuse_unrepresentable(model, qp);
   detail::add_contact_rows(model, qp);
   model.timings.add("assemble", clock.seconds());
   return qp;

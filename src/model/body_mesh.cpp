@@ -60,8 +60,11 @@ Intervals fine_intervals(const Curve& curve, const std::vector<ObstacleSpec>& ob
 }
 
 void refuse_oversized(double estimate, const BuildOptions& options) {
-  if (estimate > static_cast<double>(options.max_elements))
-    throw InputError("body.mesh", "would have about " + std::to_string(static_cast<long long>(estimate)) +
+  // Written so that a NaN estimate is refused too; sizes that underflow give +inf.
+  if (!(estimate <= static_cast<double>(options.max_elements)))
+    throw InputError("body.mesh", "would have " +
+                                      (std::isfinite(estimate) ? "about " + detail::format_value(std::round(estimate))
+                                                               : std::string("unboundedly many")) +
                                       " triangles, more than the limit of " + std::to_string(options.max_elements) +
                                       "; coarsen body.mesh.size or contact_size, or raise --max-elements");
 }

@@ -172,8 +172,17 @@ UzawaOptions parse_rho(const std::string& text, const std::string& field) {
 
 Scene parse_scene(const std::string& json_text, const std::string& source) {
   json document;
+  // Printing a value in an error message recurses once per level: 100 000 nested brackets
+  // overflowed the stack. A scene nests a few levels; refuse deep nesting while parsing.
+  constexpr int kMaxDepth = 64;
+  const json::parser_callback_t limit_depth = [&](int depth, json::parse_event_t event, json&) {
+    if (depth > kMaxDepth && (event == json::parse_event_t::object_start || event == json::parse_event_t::array_start))
+      throw InputError(source, "is not a scene: arrays and objects nested deeper than " + std::to_string(kMaxDepth) +
+                                   " levels");
+    return true;
+  };
   try {
-    document = json::parse(json_text);
+    document = json::parse(json_text, limit_depth);
   } catch (const json::exception& error) {  // a syntax error, or a number beyond double range (1e999)
     std::string what = error.what();
     const auto bracket = what.find("] ");

@@ -308,6 +308,15 @@ TEST_CASE("every kind of bad input, with every output option: exit 2, one line n
       {scene(R"({"material": {"E": 1e10}, "load": {"value": [null, -1e300]}, "obstacle": {"point": [0, -1e301]}})"),
        "load gives a load vector that overflows"},
       {scene(R"({"body": {"symmetry": false}})"), "load leaves the body free to move rigidly (translation in x)"},
+      {scene(R"({"material": {"E": 1e-320}})"), "the stiffness matrix underflows double precision"},
+      {scene(R"({"load": {"value": [null, -1e-300]}})"), "load gives a load vector that underflows"},
+      {scene(R"({"body": {"thickness": 1e308}})"), "material.E = 1 (body.thickness = 1e+308): the stiffness matrix overflows"},
+      {write("deep.json", std::string(100000, '[') + std::string(100000, ']')), "deep.json is not a scene: arrays and objects nested deeper than 64"},
+      // Sizes the element estimate once let through to Gmsh, which then took all the memory: a
+      // contact size far below the grading's first band (estimated at 1e5 triangles, not 5e9),
+      // and sizes whose square underflows (the estimate was 0/0).
+      {scene(R"({"body": {"mesh": {"contact_size": 1e-9}}})"), "body.mesh would have about"},
+      {scene(R"({"body": {"mesh": {"size": 1e-300, "contact_size": 1e-300}}})"), "body.mesh would have unboundedly many triangles"},
       // An element limit, for a generated mesh and for a file.
       {hertz + " --max-elements 1000", "body.mesh would have about"},
       {mesh_scene("good.msh") + " --max-elements 100", "more than the limit of 100; raise --max-elements"},
