@@ -30,6 +30,7 @@ namespace {
 SolveResult dispatch(const QuadraticProgram& qp, const SolveOptions& options) {
   switch (options.backend) {
     case Backend::Uzawa: return solve_uzawa(qp, options);
+    case Backend::UzawaAccelerated: return solve_uzawa_accelerated(qp, options);
   }
   throw InputError("backend", "= " + std::to_string(static_cast<int>(options.backend)) + ": not a backend");
 }
@@ -50,6 +51,7 @@ void validate_options(const SolveOptions& options) {
 bool backend_available(Backend backend) {
   switch (backend) {
     case Backend::Uzawa: return true;
+    case Backend::UzawaAccelerated: return true;
   }
   return false;
 }
