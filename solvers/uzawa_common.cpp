@@ -18,13 +18,17 @@ std::string format(double x) {
   return out.str();
 }
 
-// How many iterations without a new best residual count as not converging: a bounded
-// oscillation (ρ above ρ_max with the projection clipping the growth, typically a 2-cycle
-// between λ = 0 and the first step) never improves; a slow but converging iteration (ρ tiny)
-// improves every step.
+// How many iterations without progress (DivergenceGuard) count as not converging.
 constexpr int kStallWindow = 200;
-// A residual this many times above the best one seen means the iteration is expanding.
+// A residual or a step this many times above the smallest one seen means the iteration is expanding.
 constexpr double kGrowthFactor = 1e6;
+// Relative decrease of the step below which it counts as round-off, not progress.
+constexpr double kRoundOff = 1e-12;
+// A row switched on and off on this many consecutive iterations is in a 2-cycle...
+constexpr int kFlipWindow = 50;
+// ... unless its positive value is below this fraction of ‖λ‖∞ (a row with λ_i = 0 at the
+// optimum and no gap may be switched by a decaying error, which is convergence, not a cycle).
+constexpr double kFlipFloor = 1e-3;
 
 // The rows the unconstrained solution violates: the working set of the spectrum estimate.
 std::vector<int> violated_rows(const QuadraticProgram& qp, const VectorXd& u_free) {
@@ -111,21 +115,35 @@ double uzawa_residual(const QuadraticProgram& qp, const VectorXd& u, const Vecto
   return std::max(rel_change, rel_violation);
 }
 
-DivergenceGuard::Verdict DivergenceGuard::check(int k, double residual, bool finite) {
-  if (!finite || !std::isfinite(residual)) return Verdict::Diverged;
-  last_ = residual;
-  const bool improved = residual < best_;
-  if (improved) {
-    best_ = residual;
-    last_improvement_ = k;
-  }
+DivergenceGuard::Verdict DivergenceGuard::check(int k, double residual, const VectorXd& lambda_from,
+                                                const VectorXd& lambda_next) {
+  if (!lambda_next.allFinite() || !std::isfinite(residual)) return Verdict::Diverged;
+  const double step = (lambda_next - lambda_from).norm();
+  last_residual_ = residual;
+  // A step smaller by round-off only is no progress: a 2-cycle repeats its steps exactly.
+  if (residual < best_residual_) last_residual_progress_ = k;
+  if (step < (1 - kRoundOff) * best_step_) last_step_progress_ = k;
+  best_residual_ = std::min(best_residual_, residual);
+  best_step_ = std::min(best_step_, step);
   if (residual <= tol_) return Verdict::Converged;
-  if (!improved && (residual > kGrowthFactor * best_ || k - last_improvement_ > kStallWindow)) return Verdict::Diverged;
+  if (residual > kGrowthFactor * best_residual_ || step > kGrowthFactor * best_step_) return Verdict::Diverged;
+
+  const double negligible = kFlipFloor * std::max(inf_norm(lambda_from), inf_norm(lambda_next));
+  bool alternating = false;
+  for (int i = 0; i < lambda_next.size(); ++i) {
+    const bool flip = (lambda_next[i] > 0) != (lambda_from[i] > 0) &&
+                      std::max(lambda_next[i], lambda_from[i]) > negligible;
+    flips_[i] = flip ? flips_[i] + 1 : 0;
+    alternating = alternating || flips_[i] >= kFlipWindow;
+  }
+  // A cycle that is still decaying (the residual keeps improving) is a transient, not divergence.
+  if (alternating && k - last_residual_progress_ >= kFlipWindow) return Verdict::Diverged;
+  if (k - std::max(last_residual_progress_, last_step_progress_) > kStallWindow) return Verdict::Diverged;
   return Verdict::Continue;
 }
 
 IterationMonitor::IterationMonitor(const UzawaContext& context, int first_k, UzawaRun& run)
-    : context_(context), first_k_(first_k), run_(run), guard_(context.options.tol) {
+    : context_(context), first_k_(first_k), run_(run), guard_(context.options.tol, context.qp.n_constraints()) {
   run_.u = context.u_free;
   run_.lambda = VectorXd::Zero(context.qp.n_constraints());
 }
@@ -134,7 +152,7 @@ bool IterationMonitor::stop(int k, const VectorXd& u, const VectorXd& r, const V
                             const VectorXd& lambda_next) {
   const double residual = uzawa_residual(context_.qp, u, r, lambda_from, lambda_next);
   if (context_.options.observer) context_.options.observer(first_k_ + k + 1, u, lambda_from);
-  const DivergenceGuard::Verdict verdict = guard_.check(k, residual, lambda_next.allFinite());
+  const DivergenceGuard::Verdict verdict = guard_.check(k, residual, lambda_from, lambda_next);
   if (verdict == DivergenceGuard::Verdict::Diverged) {
     run_.status = Status::Diverged;
     return true;

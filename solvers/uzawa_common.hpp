@@ -36,21 +36,34 @@ struct UzawaStep {
 double uzawa_residual(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& r,
                       const VectorXd& lambda_from, const VectorXd& lambda_next);
 
-// Watches the residual of an iteration and says when to stop.
+// Watches an iteration and says when to stop. Three signs that it will not converge:
+//  - it expands: the step ‖λ_next − λ_from‖₂ or the relative residual grows a millionfold
+//    over the smallest seen;
+//  - a row alternates between contact and separation on every one of the last
+//    kFlipWindow iterations, with a positive value that is not negligible, and the residual
+//    has not improved meanwhile: the 2-cycle λ_i = 0 ↔ ρ r_i that the projection makes of an
+//    expanding component. It may involve a few rows only while the others still converge and
+//    shrink the step, which the next sign would miss;
+//  - no progress for kStallWindow iterations, progress being a new smallest relative residual
+//    or a new smallest step. Plain Uzawa's map is nonexpansive for ρ < 2/λ_max(S), so its step
+//    never grows and shrinks every iteration however small ρ is, even while the relative
+//    residual lingers at a plateau (a primal violation the slowly growing λ has not removed).
 class DivergenceGuard {
  public:
   enum class Verdict { Continue, Converged, Diverged };
-  explicit DivergenceGuard(double tol) : tol_(tol) {}
-  // `finite`: every entry of the new multipliers is finite.
-  Verdict check(int k, double residual, bool finite);
-  double best() const { return best_; }
-  double last() const { return last_; }
+  DivergenceGuard(double tol, int n_rows) : tol_(tol), flips_(n_rows, 0) {}
+  Verdict check(int k, double residual, const VectorXd& lambda_from, const VectorXd& lambda_next);
+  double best() const { return best_residual_; }
+  double last() const { return last_residual_; }
 
  private:
   double tol_;
-  double best_ = std::numeric_limits<double>::infinity();
-  double last_ = std::numeric_limits<double>::infinity();
-  int last_improvement_ = 0;
+  std::vector<int> flips_;  // per row: consecutive iterations that switched it on or off
+  double best_residual_ = std::numeric_limits<double>::infinity();
+  double best_step_ = std::numeric_limits<double>::infinity();
+  double last_residual_ = std::numeric_limits<double>::infinity();
+  int last_residual_progress_ = 0;  // last iteration with a new smallest residual
+  int last_step_progress_ = 0;      // last iteration with a new smallest step
 };
 
 // Everything one run of a loop needs; u_free = K⁻¹f is the iterate at λ = 0, already solved.
