@@ -56,7 +56,7 @@ UzawaStep choose_step(const QuadraticProgram& qp, const CholeskyFactor& K_factor
   const bool known = std::isfinite(step.rho_max);
   switch (uzawa.rho_rule) {
     case UzawaOptions::RhoRule::Auto:
-      // Without a spectrum (no rows, or S = 0) every step gives the same iterates.
+      // Without a spectrum (no rows) there is no iteration for the step to change.
       step.rho = !known ? 1.0 : variant == UzawaVariant::Plain ? step.rho_opt : 0.5 * step.rho_max;
       break;
     case UzawaOptions::RhoRule::Absolute: step.rho = uzawa.rho; break;

@@ -193,7 +193,10 @@ int run(const Settings& settings) {
   write_file_atomically(sweep_path, sweep_csv);
   write_file_atomically(auto_path, auto_csv);
   write_file_atomically(meshes_path, meshes_csv);
-  nlohmann::json extra = {{"scene", settings.scene}, {"points", settings.points}, {"cap_factor", settings.cap_factor},
+  // The scene relative to the source tree when it lies there, so that the context is portable.
+  const std::string source_dir = CONTACTQP_SOURCE_DIR "/";
+  const std::string scene = settings.scene.rfind(source_dir, 0) == 0 ? settings.scene.substr(source_dir.size()) : settings.scene;
+  nlohmann::json extra = {{"scene", scene}, {"points", settings.points}, {"cap_factor", settings.cap_factor},
                           {"tol", settings.tol}, {"far_field_ratio", settings.far_field_ratio},
                           {"contact_sizes", settings.contact_sizes}, {"seconds", total.seconds()}};
   write_file_atomically(context_path, bench::context_json("rho", extra.dump()));
