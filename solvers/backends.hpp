@@ -11,6 +11,7 @@
 namespace contactqp::detail {
 
 SolveResult solve_uzawa(const QuadraticProgram& qp, const SolveOptions& options);
+SolveResult solve_uzawa_accelerated(const QuadraticProgram& qp, const SolveOptions& options);
 SolveResult solve_ipopt(const QuadraticProgram& qp, const SolveOptions& options);
 SolveResult solve_nlopt(const QuadraticProgram& qp, const SolveOptions& options);
 

@@ -31,6 +31,7 @@ namespace {
 SolveResult dispatch(const QuadraticProgram& qp, const SolveOptions& options) {
   switch (options.backend) {
     case Backend::Uzawa: return solve_uzawa(qp, options);
+    case Backend::UzawaAccelerated: return solve_uzawa_accelerated(qp, options);
     case Backend::Ipopt: return solve_ipopt(qp, options);
     case Backend::Nlopt: return solve_nlopt(qp, options);
   }
@@ -47,7 +48,8 @@ void validate_options(const SolveOptions& options) {
           "was not built into this copy of contactqp");
   switch (options.backend) {
     case Backend::Uzawa:
-      reject_options(Backend::Uzawa, options.backend_options,
+    case Backend::UzawaAccelerated:
+      reject_options(options.backend, options.backend_options,
                      "its step is --rho or solver.rho (address other backends' options as ipopt.key=value)");
       break;
     case Backend::Ipopt: check_ipopt_options(options); break;
@@ -63,6 +65,7 @@ void validate_options(const SolveOptions& options) { detail::validate_options(op
 bool backend_available(Backend backend) {
   switch (backend) {
     case Backend::Uzawa: return true;
+    case Backend::UzawaAccelerated: return true;
     case Backend::Ipopt: return true;
     case Backend::Nlopt: return true;
   }

@@ -50,6 +50,7 @@ double primal_objective(const QuadraticProgram& qp, const VectorXd& u);
 
 enum class Backend {
   Uzawa,  // dual projected gradient with a fixed step ρ (the reference paper's method)
+  UzawaAccelerated,  // Uzawa with Nesterov/FISTA extrapolation on the dual and adaptive restart
   Ipopt,  // primal interior point (Ipopt with MUMPS) on the QP itself
   Nlopt,  // the dual max θ(λ), λ ≥ 0, by a bound-constrained NLopt method (L-BFGS by default)
 };
@@ -68,12 +69,17 @@ Backend parse_backend(const std::string& name, const std::string& field = "backe
 std::vector<Backend> all_backends();  // every enum value, in declaration order
 
 struct UzawaOptions {
-  // How the step ρ is chosen. Auto estimates the spectrum of S = B K⁻¹ Bᵀ (one solve per
-  // estimator step) and takes a safe step; Absolute takes `rho` in the QP's own units
-  // (force per length); FractionOfMax takes `rho` as a fraction of ρ_max = 2/λ_max(S).
+  // How the step ρ is chosen. Auto estimates the spectrum of S = B K⁻¹ Bᵀ by Lanczos (one
+  // solve per step) on the rows the unconstrained solution violates, and takes
+  // ρ_opt = 2/(λ_min + λ_max) (uzawa) or 1/λ_max (uzawa_accel); Absolute takes `rho` in the
+  // QP's own units (force per length); FractionOfMax takes `rho` as a fraction of
+  // ρ_max = 2/λ_max(S) on those rows.
   enum class RhoRule { Auto, Absolute, FractionOfMax };
   RhoRule rho_rule = RhoRule::Auto;
   double rho = 0.0;
+  // Set by solve() on its internally scaled copy: the caller's ρ per backend ρ, so that
+  // messages quote ρ in the caller's units. Leave at 1.
+  double rho_unit = 1.0;
 };
 
 struct NloptOptions {
