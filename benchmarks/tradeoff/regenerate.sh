@@ -20,7 +20,7 @@ START=$(date +%s)
 stamp() { echo "regenerate: $1 ($(( $(date +%s) - START )) s)" >&2; }
 
 stamp "configure and build bench_tradeoff in $BUILD"
-cmake -S "$SOURCE" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S "$SOURCE" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DCONTACTQP_BUILD_BENCHMARKS=ON >/dev/null
 cmake --build "$BUILD" -j2 --target bench_tradeoff
 mkdir -p "$RESULTS" "$PEER"
 
