@@ -408,7 +408,7 @@ def guide(runs, meshes):
         if r["backend"] not in by_backend or r["total_seconds"] < by_backend[r["backend"]]["total_seconds"]:
             by_backend[r["backend"]] = r
     chosen = sorted(by_backend.values(), key=lambda r: r["total_seconds"])
-    target = f"finest mesh, ‖λ − λ_ref‖/‖λ_ref‖ ≤ {REFERENCE_LAMBDA:g}, certified |gap| ≤ {REFERENCE_GAP:g}"
+    target = f"finest mesh, ‖λ − λ_ref‖/‖λ_ref‖ ≤ {REFERENCE_LAMBDA:g}, certified duality gap within ±{REFERENCE_GAP:g}"
     for k, r in enumerate(chosen[:2]):
         label = "verified reference" if k == 0 else "… cross-checked by"
         lines.append(f"| {label} | {target if k == 0 else 'a second backend, the same bounds'} | "
