@@ -11,6 +11,7 @@
 namespace contactqp::detail {
 
 SolveResult solve_uzawa(const QuadraticProgram& qp, const SolveOptions& options);
+SolveResult solve_active_set(const QuadraticProgram& qp, const SolveOptions& options);
 
 // The factorisation of qp.K a CHOLMOD-based backend works with: options.K_factor when the
 // caller supplied one, otherwise a fresh one whose analyse + factorise time is recorded in

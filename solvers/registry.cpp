@@ -30,6 +30,7 @@ namespace {
 SolveResult dispatch(const QuadraticProgram& qp, const SolveOptions& options) {
   switch (options.backend) {
     case Backend::Uzawa: return solve_uzawa(qp, options);
+    case Backend::ActiveSet: return solve_active_set(qp, options);
   }
   throw InputError("backend", "= " + std::to_string(static_cast<int>(options.backend)) + ": not a backend");
 }
@@ -40,6 +41,8 @@ void validate_options(const SolveOptions& options) {
   const UzawaOptions& uzawa = options.uzawa;
   if (uzawa.rho_rule != UzawaOptions::RhoRule::Auto)
     require(uzawa.rho > 0 && std::isfinite(uzawa.rho), "rho", uzawa.rho, "must be a positive number");
+  require(options.active_set.max_dense_bytes > 0, "active_set.max_dense_bytes", options.active_set.max_dense_bytes,
+          "must be positive");
   require(backend_available(options.backend), "backend", to_string(options.backend),
           "was not built into this copy of contactqp");
 }
@@ -50,6 +53,7 @@ void validate_options(const SolveOptions& options) {
 bool backend_available(Backend backend) {
   switch (backend) {
     case Backend::Uzawa: return true;
+    case Backend::ActiveSet: return true;
   }
   return false;
 }

@@ -30,6 +30,7 @@ struct RunReport {
   ContactSummary contact;
   std::optional<HertzComparison> hertz;
   Timings timings;                    // every phase: mesh, assemble, factorize, solve, ..., total
+  bool no_contact = false;            // a linear solve with the contact rows dropped (--no-contact)
   std::vector<std::string> warnings;  // also printed on stderr
 };
 

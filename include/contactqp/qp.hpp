@@ -50,6 +50,7 @@ double primal_objective(const QuadraticProgram& qp, const VectorXd& u);
 
 enum class Backend {
   Uzawa,  // dual projected gradient with a fixed step ρ (the reference paper's method)
+  ActiveSet,  // primal-dual active set (semismooth Newton) on the contact-condensed problem
 };
 
 enum class Status {
@@ -74,6 +75,13 @@ struct UzawaOptions {
   double rho = 0.0;
 };
 
+struct ActiveSetOptions {
+  // S = B K⁻¹ Bᵀ (m × m) is formed dense when S and one factorisation of its active block,
+  // 16 m² bytes, fit in this limit (m ≤ 8192 at the default 1 GiB). Above it S is applied
+  // matrix-free, one solve with K per product, and its active blocks are solved by CG.
+  double max_dense_bytes = 1024.0 * 1024.0 * 1024.0;
+};
+
 struct SolveOptions {
   Backend backend = Backend::Uzawa;
   double tol = 1e-8;         // relative, dimensionless: each backend's stopping rule uses the scales of certificate.hpp
@@ -81,6 +89,7 @@ struct SolveOptions {
   bool verbose = false;      // third-party banners and per-iteration logs stay silent unless set
   bool scale = true;         // solve an internally scaled copy, so E and length units do not matter
   UzawaOptions uzawa;
+  ActiveSetOptions active_set;
   std::map<std::string, std::string> backend_options;  // --backend-option key=value, passed through
   // A factorisation of this QP's K to reuse (backends that use CHOLMOD then skip their own).
   std::shared_ptr<const CholeskyFactor> K_factor;

@@ -11,6 +11,7 @@ namespace {
 // The one name table of the backends: the CLI, the scenes and the JSON use these names.
 const std::pair<Backend, const char*> kBackendNames[] = {
     {Backend::Uzawa, "uzawa"},
+    {Backend::ActiveSet, "active_set"},
 };
 
 bool all_finite(const SparseMatrix& A) {
