@@ -15,7 +15,7 @@ std::shared_ptr<const CholeskyFactor> factor_of_K(const QuadraticProgram& qp,
                                                   std::string& message) {
   if (options.K_factor) return options.K_factor;
   Stopwatch clock;
-  auto factor = std::make_shared<const CholeskyFactor>(qp.K);
+  auto factor = std::make_shared<const CholeskyFactor>(qp.K, options.ordering);
   timings.add("factorize", clock.seconds());
   if (!factor->ok()) {
     message = "the stiffness matrix K could not be factorised: " + factor->message() +

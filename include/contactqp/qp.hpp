@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "contactqp/cholesky.hpp"
 #include "contactqp/timer.hpp"
 
 namespace contactqp {
@@ -90,6 +91,7 @@ struct SolveOptions {
   bool scale = true;         // solve an internally scaled copy, so E and length units do not matter
   UzawaOptions uzawa;
   ActiveSetOptions active_set;
+  Ordering ordering = Ordering::Amd;  // fill-reducing ordering of K's factorisation (cholesky.hpp)
   std::map<std::string, std::string> backend_options;  // --backend-option key=value, passed through
   // A factorisation of this QP's K to reuse (backends that use CHOLMOD then skip their own).
   std::shared_ptr<const CholeskyFactor> K_factor;

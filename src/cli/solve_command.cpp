@@ -23,6 +23,7 @@ void apply_overrides(const SolveArguments& arguments, SolveOptions& options) {
     options.max_iterations = arguments.max_iterations;
   }
   options.verbose = arguments.verbose;
+  if (!arguments.ordering.empty()) options.ordering = parse_ordering(arguments.ordering, "--ordering");
   for (const std::string& pair : arguments.backend_options) {
     const auto equals = pair.find('=');
     if (equals == std::string::npos || equals == 0)
@@ -98,6 +99,7 @@ void add_solve_command(CLI::App& app, int& exit_status) {
   command->add_option("--max-elements", arguments->max_elements, "Refuse meshes with more triangles (default 4000000)");
   command->add_option("--backend-option", arguments->backend_options, "key=value passed to the backend (repeatable)");
   command->add_flag("--verbose", arguments->verbose, "Let the backend print its log");
+  command->add_option("--ordering", arguments->ordering, "Fill-reducing ordering of K: amd (default), metis or auto");
   command->add_flag("--no-contact", arguments->no_contact,
                     "Drop the contact rows: one linear solve of the same K (the reference for timings)");
   command->callback([arguments, tol, max_iterations, &exit_status] {

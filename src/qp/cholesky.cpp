@@ -7,6 +7,7 @@
 #include <mutex>
 #include <vector>
 
+#include "contactqp/errors.hpp"
 #include "contactqp/timer.hpp"
 
 // The BLAS that CHOLMOD's supernodal kernels use (OpenBLAS on Debian), for the dense blocks
@@ -73,6 +74,26 @@ struct CholeskyFactor::Impl {
     return d;
   }
 };
+
+namespace {
+const std::pair<Ordering, const char*> kOrderingNames[] = {
+    {Ordering::Auto, "auto"}, {Ordering::Amd, "amd"}, {Ordering::Metis, "metis"}};
+}  // namespace
+
+std::string to_string(Ordering ordering) {
+  for (const auto& [value, name] : kOrderingNames)
+    if (value == ordering) return name;
+  return "unknown";
+}
+
+Ordering parse_ordering(const std::string& name, const std::string& field) {
+  std::string valid;
+  for (const auto& [value, known] : kOrderingNames) {
+    if (name == known) return value;
+    valid += (valid.empty() ? "" : ", ") + std::string(known);
+  }
+  throw InputError(field, "= \"" + name + "\": unknown ordering; valid: " + valid);
+}
 
 CholeskyFactor::CholeskyFactor(const Eigen::SparseMatrix<double>& A_in, Ordering ordering)
     : impl_(std::make_shared<Impl>()) {
@@ -354,13 +375,20 @@ Condensation CholeskyFactor::condense(const Eigen::SparseMatrix<double>& C, cons
     const Block block = blocks.block(s);
     const int k = static_cast<int>(columns.size());
     MatrixXd& Ws = W[s];
-    // W_s = L_ss⁻¹ W_s, then S += W_sᵀW_s and c += W_sᵀ y_s.
-    dtrsm_("L", "L", "N", "N", &block.ncols, &k, &one, block.values, &block.nrows, Ws.data(), &block.ncols);
+    // W_s = L_ss⁻¹ W_s, then S += W_sᵀW_s and c += W_sᵀ y_s. A simplicial factor has blocks of
+    // one column, too small to be worth a BLAS call each.
+    if (block.ncols == 1)
+      Ws /= block.values[0];
+    else
+      dtrsm_("L", "L", "N", "N", &block.ncols, &k, &one, block.values, &block.nrows, Ws.data(), &block.ncols);
     out.reached_columns += block.ncols;
     out.entries += Ws.size();
     const Eigen::VectorXd cy = Ws.transpose() * y.segment(block.first_column, block.ncols);
     for (int a = 0; a < k; ++a) out.c[columns[a]] += cy[a];
-    if (columns.back() - columns.front() + 1 == k) {
+    if (block.ncols == 1) {
+      for (int c = 0; c < k; ++c)
+        for (int a = c; a < k; ++a) out.S(columns[a], columns[c]) += Ws(0, a) * Ws(0, c);
+    } else if (columns.back() - columns.front() + 1 == k) {
       // Consecutive columns (near the root, all of them): accumulate in place.
       dsyrk_("L", "T", &k, &block.ncols, &one, Ws.data(), &block.ncols, &one, &out.S(columns.front(), columns.front()),
              &m);
@@ -374,7 +402,10 @@ Condensation CholeskyFactor::condense(const Eigen::SparseMatrix<double>& C, cons
     const int below = block.nrows - block.ncols;
     if (below > 0) {
       update.resize(below, k);
-      dgemm_("N", "N", &below, &k, &block.ncols, &one, block.values + block.ncols, &block.nrows, Ws.data(),
+      if (block.ncols == 1)
+        update = Eigen::Map<const Eigen::VectorXd>(block.values + 1, below) * Ws;
+      else
+        dgemm_("N", "N", &below, &k, &block.ncols, &one, block.values + block.ncols, &block.nrows, Ws.data(),
              &block.ncols, &zero, update.data(), &below);
       // Rows below come sorted in a supernode, so they fall into runs with one ancestor each.
       for (int q = 0; q < below;) {

@@ -212,3 +212,22 @@ TEST_CASE("contactqp solve --backend active_set writes the phase timings; bad op
   CHECK(unknown.exit_status == 2);
   CHECK(unknown.err.find("valid: max_dense_mb") != std::string::npos);
 }
+
+TEST_CASE("SolveOptions::ordering reaches the factorisation and does not change the answer", "[validation][active_set]") {
+  const QuadraticProgram qp = hertz_qp();
+  const SolveResult amd = solve(qp, active_set(1e-10));
+  SolveOptions options = active_set(1e-10);
+  options.ordering = Ordering::Metis;
+  const SolveResult metis = solve(qp, options);
+  REQUIRE(amd.status == Status::Converged);
+  REQUIRE(metis.status == Status::Converged);
+  CHECK(amd.K_factor->ordering_name() == "amd");  // the default
+  CHECK(metis.K_factor->ordering_name() == "metis");
+  CHECK(relative_inf(metis.u, amd.u) < 1e-12);
+  CHECK(relative_inf(metis.lambda, amd.lambda) < 1e-10);
+  CHECK(parse_ordering("auto", "--ordering") == Ordering::Auto);
+  CHECK_THROWS_WITH(parse_ordering("nd", "--ordering"), Catch::Matchers::Contains("valid: auto, amd, metis"));
+  const CliRun bad = run_cli("solve " + source_path("scenes/hertz.json") + " --ordering colamd");
+  CHECK(bad.exit_status == 2);
+  CHECK(bad.err.find("--ordering") != std::string::npos);
+}
