@@ -12,14 +12,13 @@
 #include <memory>
 #include <sstream>
 
+#include "backend_options.hpp"
 #include "backends.hpp"
 #include "contactqp/errors.hpp"
 #include "lcp.hpp"
 
 namespace contactqp::detail {
 namespace {
-
-double inf_norm(const VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
 
 std::string format(double x) {
   std::ostringstream out;
@@ -31,18 +30,16 @@ std::string format(double x) {
 // Bytes a dense S and one Cholesky factor of its active block take: 2 × 8 m².
 double dense_bytes(int m) { return 16.0 * m * m; }
 
-// --backend-option keys of this backend, read before any work.
-ActiveSetOptions read_backend_options(const SolveOptions& options) {
+// The backend options it reads (keys unaddressed or addressed "active_set.key").
+ActiveSetOptions effective_options(const SolveOptions& options) {
   ActiveSetOptions settings = options.active_set;
-  for (const auto& [key, value] : options.backend_options) {
+  for (const auto& [key, value] : options_for(Backend::ActiveSet, options.backend_options)) {
     if (key == "max_dense_mb") {
-      char* end = nullptr;
-      const double mb = std::strtod(value.c_str(), &end);
-      require(end && *end == '\0' && mb > 0 && std::isfinite(mb), "--backend-option max_dense_mb", value,
-              "must be a positive number of MiB");
+      const double mb = parse_number(value, option_field(key));
+      require(mb > 0, option_field(key), value, "must be a positive number of MiB");
       settings.max_dense_bytes = mb * 1024.0 * 1024.0;
     } else {
-      throw InputError("--backend-option " + key, "is not an option of active_set; valid: max_dense_mb");
+      throw InputError(option_field(key), "= \"" + value + "\": not an option of active_set; valid: max_dense_mb");
     }
   }
   return settings;
@@ -67,8 +64,10 @@ double relative_residual(const QuadraticProgram& qp, const VectorXd& lambda, con
 
 }  // namespace
 
+void check_active_set_options(const SolveOptions& options) { effective_options(options); }
+
 SolveResult solve_active_set(const QuadraticProgram& qp, const SolveOptions& options) {
-  const ActiveSetOptions settings = read_backend_options(options);
+  const ActiveSetOptions settings = effective_options(options);
   SolveResult result;
   const int m = qp.n_constraints();
 

@@ -2,6 +2,7 @@
 // shares — input validation, internal scaling, and the final guard against non-finite output.
 #include <cmath>
 
+#include "backend_options.hpp"
 #include "backends.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/solve.hpp"
@@ -30,6 +31,8 @@ namespace {
 SolveResult dispatch(const QuadraticProgram& qp, const SolveOptions& options) {
   switch (options.backend) {
     case Backend::Uzawa: return solve_uzawa(qp, options);
+    case Backend::Ipopt: return solve_ipopt(qp, options);
+    case Backend::Nlopt: return solve_nlopt(qp, options);
     case Backend::ActiveSet: return solve_active_set(qp, options);
   }
   throw InputError("backend", "= " + std::to_string(static_cast<int>(options.backend)) + ": not a backend");
@@ -45,14 +48,27 @@ void validate_options(const SolveOptions& options) {
           "must be positive");
   require(backend_available(options.backend), "backend", to_string(options.backend),
           "was not built into this copy of contactqp");
+  switch (options.backend) {
+    case Backend::Uzawa:
+      reject_options(Backend::Uzawa, options.backend_options,
+                     "its step is --rho or solver.rho (address other backends' options as ipopt.key=value)");
+      break;
+    case Backend::Ipopt: check_ipopt_options(options); break;
+    case Backend::Nlopt: check_nlopt_options(options); break;
+    case Backend::ActiveSet: check_active_set_options(options); break;
+  }
 }
 
 }  // namespace
 }  // namespace detail
 
+void validate_options(const SolveOptions& options) { detail::validate_options(options); }
+
 bool backend_available(Backend backend) {
   switch (backend) {
     case Backend::Uzawa: return true;
+    case Backend::Ipopt: return true;
+    case Backend::Nlopt: return true;
     case Backend::ActiveSet: return true;
   }
   return false;

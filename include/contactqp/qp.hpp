@@ -51,6 +51,8 @@ double primal_objective(const QuadraticProgram& qp, const VectorXd& u);
 
 enum class Backend {
   Uzawa,  // dual projected gradient with a fixed step ρ (the reference paper's method)
+  Ipopt,  // primal interior point (Ipopt with MUMPS) on the QP itself
+  Nlopt,  // the dual max θ(λ), λ ≥ 0, by a bound-constrained NLopt method (L-BFGS by default)
   ActiveSet,  // primal-dual active set (semismooth Newton) on the contact-condensed problem
 };
 
@@ -76,6 +78,14 @@ struct UzawaOptions {
   double rho = 0.0;
 };
 
+struct NloptOptions {
+  // The gradient-based NLopt algorithm that maximises θ(λ) over λ ≥ 0 (backend option
+  // "algorithm": LD_LBFGS, LD_CCSAQ, LD_MMA, LD_SLSQP).
+  enum class Algorithm { Lbfgs, Ccsaq, Mma, Slsqp };
+  Algorithm algorithm = Algorithm::Lbfgs;
+  int memory = 0;  // L-BFGS: correction pairs kept (backend option "memory"); 0 = NLopt's choice
+};
+
 struct ActiveSetOptions {
   // S = B K⁻¹ Bᵀ (m × m) is formed dense when S and one factorisation of its active block,
   // 16 m² bytes, fit in this limit (m ≤ 8192 at the default 1 GiB). Above it S is applied
@@ -90,8 +100,11 @@ struct SolveOptions {
   bool verbose = false;      // third-party banners and per-iteration logs stay silent unless set
   bool scale = true;         // solve an internally scaled copy, so E and length units do not matter
   UzawaOptions uzawa;
+  NloptOptions nlopt;
   ActiveSetOptions active_set;
   Ordering ordering = Ordering::Amd;  // fill-reducing ordering of K's factorisation (cholesky.hpp)
+  // Backend options as text: Ipopt's own options for ipopt, "algorithm"/"memory" for nlopt.
+  // A key "ipopt.print_level" is read only by that backend, so one map can serve several.
   std::map<std::string, std::string> backend_options;  // --backend-option key=value, passed through
   // A factorisation of this QP's K to reuse (backends that use CHOLMOD then skip their own).
   std::shared_ptr<const CholeskyFactor> K_factor;

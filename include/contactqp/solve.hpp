@@ -19,6 +19,9 @@ SolveResult solve(const QuadraticProgram& qp, const SolveOptions& options);
 // options.K_factor reused when given). λ = 0 (one entry per row of B), status Converged
 // unless K cannot be factorised; timings "factorize" and "solve" (one solve), then "total".
 SolveResult solve_without_contact(const QuadraticProgram& qp, const SolveOptions& options);
+// The checks solve() makes of the options, backend options included: InputError naming the
+// field. For callers that run several solves and want bad input reported before any work.
+void validate_options(const SolveOptions& options);
 
 bool backend_available(Backend backend);  // false when its library was not built in
 std::vector<Backend> available_backends();

@@ -32,6 +32,15 @@ struct SolveArguments {
 };
 
 void add_solve_command(CLI::App& app, int& exit_status);
+void add_compare_command(CLI::App& app, int& exit_status);
+
+// The command line's solver settings over the scene's (InputError on a bad value).
+void apply_overrides(const SolveArguments& arguments, SolveOptions& options);
+// --backend-option key=value pairs into options.backend_options (over the scene's own).
+void add_backend_options(const std::vector<std::string>& pairs, SolveOptions& options);
+
+// printf into a std::string (one table line; at most 511 characters).
+std::string format(const char* pattern, ...) __attribute__((format(printf, 1, 2)));
 
 // The human summary printed on stdout after a solve.
 std::string summary_table(const RunReport& report);

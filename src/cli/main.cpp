@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "contactqp 0.1.0");
   int exit_status = 0;
   contactqp::cli::add_solve_command(app, exit_status);
+  contactqp::cli::add_compare_command(app, exit_status);
   if (argc > 1 && argv[1][0] != '-') {
     std::string valid;
     bool known = false;

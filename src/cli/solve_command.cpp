@@ -9,7 +9,6 @@
 #include "contactqp/solve.hpp"
 
 namespace contactqp::cli {
-namespace {
 
 void apply_overrides(const SolveArguments& arguments, SolveOptions& options) {
   if (!arguments.backend.empty()) options.backend = parse_backend(arguments.backend, "--backend");
@@ -24,13 +23,10 @@ void apply_overrides(const SolveArguments& arguments, SolveOptions& options) {
   }
   options.verbose = arguments.verbose;
   if (!arguments.ordering.empty()) options.ordering = parse_ordering(arguments.ordering, "--ordering");
-  for (const std::string& pair : arguments.backend_options) {
-    const auto equals = pair.find('=');
-    if (equals == std::string::npos || equals == 0)
-      throw InputError("--backend-option", "= " + pair + ": must be key=value");
-    options.backend_options[pair.substr(0, equals)] = pair.substr(equals + 1);
-  }
+  add_backend_options(arguments.backend_options, options);
 }
+
+namespace {
 
 int run_solve(const SolveArguments& arguments) {
   Stopwatch total;
@@ -40,6 +36,7 @@ int run_solve(const SolveArguments& arguments) {
   require(arguments.max_elements > 0, "--max-elements", arguments.max_elements, "must be positive");
   Scene scene = load_scene(arguments.scene_path);
   apply_overrides(arguments, scene.solver);
+  validate_options(scene.solver);  // backend options too, before the mesh is built
 
   BuildOptions build;
   build.max_elements = arguments.max_elements;
@@ -85,6 +82,15 @@ int run_solve(const SolveArguments& arguments) {
 
 }  // namespace
 
+void add_backend_options(const std::vector<std::string>& pairs, SolveOptions& options) {
+  for (const std::string& pair : pairs) {
+    const auto equals = pair.find('=');
+    if (equals == std::string::npos || equals == 0)
+      throw InputError("--backend-option", "= " + pair + ": must be key=value");
+    options.backend_options[pair.substr(0, equals)] = pair.substr(equals + 1);
+  }
+}
+
 void add_solve_command(CLI::App& app, int& exit_status) {
   auto arguments = std::make_shared<SolveArguments>();
   CLI::App* command = app.add_subcommand("solve", "Solve one scene and report contact pressure, certificate and Hertz errors");
@@ -97,7 +103,8 @@ void add_solve_command(CLI::App& app, int& exit_status) {
   command->add_option("--json", arguments->json_path, "Write the result JSON here");
   command->add_option("--csv", arguments->csv_path, "Write the contact pressure profile CSV here");
   command->add_option("--max-elements", arguments->max_elements, "Refuse meshes with more triangles (default 4000000)");
-  command->add_option("--backend-option", arguments->backend_options, "key=value passed to the backend (repeatable)");
+  command->add_option("--backend-option", arguments->backend_options,
+                      "key=value passed to the backend (repeatable); ipopt.key=value addresses one backend");
   command->add_flag("--verbose", arguments->verbose, "Let the backend print its log");
   command->add_option("--ordering", arguments->ordering, "Fill-reducing ordering of K: amd (default), metis or auto");
   command->add_flag("--no-contact", arguments->no_contact,

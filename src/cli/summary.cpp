@@ -7,9 +7,7 @@
 #include "commands.hpp"
 
 namespace contactqp::cli {
-namespace {
 
-std::string format(const char* pattern, ...) __attribute__((format(printf, 1, 2)));
 std::string format(const char* pattern, ...) {
   char buffer[512];
   va_list args;
@@ -18,8 +16,6 @@ std::string format(const char* pattern, ...) {
   va_end(args);
   return buffer;
 }
-
-}  // namespace
 
 std::string summary_table(const RunReport& report) {
   const Model& model = *report.model;

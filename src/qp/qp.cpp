@@ -11,6 +11,8 @@ namespace {
 // The one name table of the backends: the CLI, the scenes and the JSON use these names.
 const std::pair<Backend, const char*> kBackendNames[] = {
     {Backend::Uzawa, "uzawa"},
+    {Backend::Ipopt, "ipopt"},
+    {Backend::Nlopt, "nlopt"},
     {Backend::ActiveSet, "active_set"},
 };
 

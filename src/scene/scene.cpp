@@ -168,6 +168,18 @@ void read_solver(JsonObject solver, SolveOptions& options) {
     options.max_iterations = *max_iterations;
     require(*max_iterations > 0, solver.path_of("max_iterations"), *max_iterations, "must be positive");
   }
+  if (solver.has("options")) {
+    // Backend options as in --backend-option key=value; the backend checks keys and values.
+    const json& entries = solver.value("options");
+    const std::string path = solver.path_of("options");
+    if (!entries.is_object())
+      throw InputError(path, "= " + describe(entries) + ": must be an object {\"key\": value}");
+    for (const auto& [key, value] : entries.items()) {
+      if (value.is_string()) options.backend_options[key] = value.get<std::string>();
+      else if (value.is_number()) options.backend_options[key] = value.dump();
+      else throw InputError(path + "." + key, "= " + describe(value) + ": must be a string or a number");
+    }
+  }
   solver.finish();
 }
 

@@ -111,6 +111,16 @@ TEST_CASE("the CLI rejects missing files, bad options and unwritable outputs", "
       {"solve " + scene + " --max-iterations 0", "--max-iterations"},
       {"solve " + scene + " --max-elements 10", "--max-elements"},
       {"solve " + scene + " --backend-option nonsense", "--backend-option"},
+      {"solve " + scene + " --backend ipopt --backend-option print_lvl=5 --json " + out, "print_lvl"},
+      {"solve " + scene + " --backend nlopt --backend-option algorithm=LD_FAST --json " + out, "LD_LBFGS"},
+      {"compare " + scene + " --backends uzawa,ipot --json " + out, "valid: uzawa, ipopt, nlopt"},
+      {"compare " + scene + " --backends uzawa,uzawa --json " + out, "listed twice"},
+      {"compare " + scene + " --backends , --json " + out, "--backends"},
+      {"compare " + scene + " --tol 0 --json " + out, "--tol"},
+      {"compare " + scene + " --json " + directory.path("no/such/dir/out.json"), "--json"},
+      {"compare " + scene + " --backend-option nlopt.algorithm=LD_FAST --json " + out, "LD_FAST"},
+      {"compare " + scene + " --backend-option max_iter=5 --json " + out, "backend option max_iter"},
+      {"compare " + directory.path("missing.json"), "missing.json"},
       {"solve " + scene + " --unknown-flag", "unknown-flag"},
       {"solve", "scene"},
       {"frobnicate", "frobnicate"},
@@ -121,6 +131,8 @@ TEST_CASE("the CLI rejects missing files, bad options and unwritable outputs", "
     CHECK(run.exit_status == 2);
     CHECK(run.err.find(c.names) != std::string::npos);
     CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+    CHECK(run.out.empty());
+    CHECK_FALSE(std::filesystem::exists(out));
   }
 }
 

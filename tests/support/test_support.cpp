@@ -24,6 +24,11 @@ QuadraticProgram make_qp(const Eigen::MatrixXd& K, const Eigen::VectorXd& f, con
   return qp;
 }
 
+QuadraticProgram spring_against_wall(double k, double F, double gap) {
+  return make_qp(Eigen::MatrixXd::Constant(1, 1, k), Eigen::VectorXd::Constant(1, F),
+                 Eigen::MatrixXd::Constant(1, 1, 1.0), Eigen::VectorXd::Constant(1, gap));
+}
+
 ExactSolution solve_by_enumeration(const QuadraticProgram& qp) {
   const int n = qp.n_dofs(), m = qp.n_constraints();
   if (m > 12) throw std::invalid_argument("solve_by_enumeration: m > 12");

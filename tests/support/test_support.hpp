@@ -15,6 +15,10 @@ namespace contactqp::testing {
 QuadraticProgram make_qp(const Eigen::MatrixXd& K, const Eigen::VectorXd& f, const Eigen::MatrixXd& B,
                          const Eigen::VectorXd& g);
 
+// One spring of stiffness k pulled by F towards a wall at distance `gap`:
+// u = min(F/k, gap), λ = max(0, F − k·gap) — the wall pushes back, so λ ≥ 0 is compression.
+QuadraticProgram spring_against_wall(double k, double F, double gap);
+
 // The exact solution of a small QP by enumerating every active set (m ≤ 12): for each set A,
 // solve the equality-constrained KKT system and keep the one that is primal and dual feasible.
 struct ExactSolution {

@@ -211,6 +211,9 @@ TEST_CASE("contactqp solve --backend active_set writes the phase timings; bad op
   const CliRun unknown = run_cli("solve " + scene + " --backend active_set --backend-option rho=2");
   CHECK(unknown.exit_status == 2);
   CHECK(unknown.err.find("valid: max_dense_mb") != std::string::npos);
+  // Keys addressed to another backend are left to it.
+  const CliRun addressed = run_cli("solve " + scene + " --backend active_set --backend-option ipopt.print_level=5");
+  CHECK(addressed.exit_status == 0);
 }
 
 TEST_CASE("SolveOptions::ordering reaches the factorisation and does not change the answer", "[validation][active_set]") {

@@ -9,17 +9,6 @@
 using namespace contactqp;
 using namespace contactqp::testing;
 
-namespace {
-
-// One spring of stiffness k pulled by F towards a wall at distance `gap`:
-// u = min(F/k, gap), λ = max(0, F − k·gap).
-QuadraticProgram spring_against_wall(double k, double F, double gap) {
-  return make_qp(Eigen::MatrixXd::Constant(1, 1, k), Eigen::VectorXd::Constant(1, F),
-                 Eigen::MatrixXd::Constant(1, 1, 1.0), Eigen::VectorXd::Constant(1, gap));
-}
-
-}  // namespace
-
 TEST_CASE("Uzawa holds a spring against a wall", "[validation][uzawa]") {
   const double k = 3.0, F = 2.0;
   SECTION("in contact") {
@@ -136,27 +125,4 @@ TEST_CASE("the certificate: zero gap at the optimum, the exact gap elsewhere", "
   CHECK(c.duality_gap == Approx(J - theta).epsilon(1e-10));
   CHECK(c.duality_gap > 0);
   CHECK(c.stationarity > 1e-3);
-}
-
-TEST_CASE("weak duality holds on every Uzawa iterate that is feasible", "[validation][certificate]") {
-  const QuadraticProgram qp = random_qp(8, 6, 11);
-  const ExactSolution exact = solve_by_enumeration(qp);
-  SolveOptions options = options_for(Backend::Uzawa, 1e-10);
-  int feasible = 0, seen = 0;
-  // Weak duality: θ(λ_k) ≤ J(u*) for every λ_k ≥ 0 (u* is feasible), and J(u_k) ≥ θ(λ_k)
-  // whenever u_k is feasible. (Uzawa's iterates usually approach from the infeasible side.)
-  const Certificate optimum = certify(qp, exact.u, exact.lambda);
-  options.observer = [&](int, const Eigen::VectorXd& u, const Eigen::VectorXd& lambda) {
-    ++seen;
-    const Certificate c = certify(qp, u, lambda);
-    CHECK(c.dual_objective <= optimum.objective + 1e-12 * std::abs(optimum.objective));
-    if ((qp.B * u - qp.g).maxCoeff() <= 0) {
-      ++feasible;
-      CHECK(c.duality_gap >= -1e-12 * std::abs(c.objective));
-    }
-  };
-  const SolveResult r = solve(qp, options);
-  REQUIRE(r.status == Status::Converged);
-  CHECK(seen == r.iterations);
-  INFO(feasible << " of " << seen << " iterates were primal feasible");
 }
