@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <sstream>
 
 #include "backend_options.hpp"
 #include "backends.hpp"
@@ -19,13 +18,6 @@
 
 namespace contactqp::detail {
 namespace {
-
-std::string format(double x) {
-  std::ostringstream out;
-  out.precision(3);
-  out << x;
-  return out.str();
-}
 
 // Bytes a dense S and one Cholesky factor of its active block take: 2 × 8 m².
 double dense_bytes(int m) { return 16.0 * m * m; }
@@ -138,19 +130,19 @@ SolveResult solve_active_set(const QuadraticProgram& qp, const SolveOptions& opt
 
   std::string how = std::to_string(m) + " candidate rows, " + std::to_string(lcp_result.active) + " in contact";
   if (!dense)
-    how += "; S applied matrix-free: a dense S would need " + format(dense_bytes(m) / 1048576.0) +
-           " MiB, over the limit of " + format(settings.max_dense_bytes / 1048576.0) + " MiB";
+    how += "; S applied matrix-free: a dense S would need " + short_number(dense_bytes(m) / 1048576.0) +
+           " MiB, over the limit of " + short_number(settings.max_dense_bytes / 1048576.0) + " MiB";
   if (lcp_result.cycle_detected) how += "; the active-set steps cycled and projected Newton finished";
   switch (lcp_result.outcome) {
     case LcpOutcome::Converged:
       result.status = Status::Converged;
-      result.message = "converged: condensed LCP residual " + format(lcp_result.residual) + " <= " +
-                       format(options.tol) + " (" + how + ")";
+      result.message = "converged: condensed LCP residual " + short_number(lcp_result.residual) + " <= " +
+                       short_number(options.tol) + " (" + how + ")";
       break;
     case LcpOutcome::MaxIterations:
       result.status = Status::MaxIterations;
       result.message = "stopped after " + std::to_string(options.max_iterations) + " iterations with residual " +
-                       format(lcp_result.residual) + " (" + how + "); more iterations may help";
+                       short_number(lcp_result.residual) + " (" + how + "); more iterations may help";
       break;
     case LcpOutcome::Cycled:  // only without the safeguard, which this backend always uses
       result.status = Status::Diverged;
@@ -158,7 +150,7 @@ SolveResult solve_active_set(const QuadraticProgram& qp, const SolveOptions& opt
       break;
     case LcpOutcome::Stalled:
       result.status = Status::NumericalError;
-      result.message = "the projected Newton line search stalled at residual " + format(lcp_result.residual) +
+      result.message = "the projected Newton line search stalled at residual " + short_number(lcp_result.residual) +
                        " (" + how + "): round-off in S; a larger tol may help";
       break;
   }

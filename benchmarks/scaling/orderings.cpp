@@ -1,8 +1,11 @@
 // benchmarks/scaling/orderings: which fill-reducing ordering CHOLMOD should use for K.
 // For each Hertz level and each Ordering (auto, amd, metis): analyse and factorise K, one
 // solve, and condense() of the contact rows (the active-set backend's extra work), repeated
-// --repeats times. Writes orderings.csv and orderings-context.json (README, "Orderings").
+// --repeats times. For scale, S = B K⁻¹ Bᵀ is also formed the plain way, one dense solve with
+// all m columns of Bᵀ (CHOLMOD's blocked multi-right-hand-side solve), when n·m doubles fit in
+// 1 GiB. Writes orderings.csv and orderings-context.json (README, "Orderings").
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <iostream>
 #include <sstream>
 
@@ -33,7 +36,7 @@ int run(const Arguments& arguments) {
   const std::string csv_path = arguments.out + "/orderings.csv";
   std::string csv =
       "level,dofs,constraints,ordering,repeat,analyse_seconds,factorize_seconds,solve_seconds,condense_seconds,"
-      "factor_nonzeros,reached_columns\n";
+      "factor_nonzeros,reached_columns,dense_solve_seconds\n";
   const std::pair<Ordering, const char*> orderings[] = {
       {Ordering::Auto, "auto"}, {Ordering::Amd, "amd"}, {Ordering::Metis, "metis"}};
   for (int k : levels) {
@@ -52,12 +55,21 @@ int run(const Arguments& arguments) {
         clock.restart();
         const Condensation condensed = factor.condense(qp.B, qp.f);
         const double condense_seconds = clock.seconds();
+        double dense_solve_seconds = NAN;
+        if (8.0 * qp.n_dofs() * qp.n_constraints() <= 1024.0 * 1024.0 * 1024.0) {
+          const Eigen::MatrixXd Bt(qp.B.transpose());
+          clock.restart();
+          const Eigen::MatrixXd S = qp.B * factor.solve_columns(Bt);
+          dense_solve_seconds = clock.seconds();
+        }
         std::ostringstream line;
         line.precision(6);
         line << k << ',' << qp.n_dofs() << ',' << qp.n_constraints() << ',' << name << '(' << factor.ordering_name()
              << ")," << repeat << ',' << factor.analyse_seconds() << ',' << factor.factorize_seconds() << ','
              << solve_seconds << ',' << condense_seconds << ',' << factor.factor_nonzeros() << ','
-             << condensed.reached_columns << '\n';
+             << condensed.reached_columns << ',';
+        if (std::isfinite(dense_solve_seconds)) line << dense_solve_seconds;
+        line << '\n';
         csv += line.str();
         std::cout << line.str();
       }

@@ -234,16 +234,17 @@ std::string report_text(const Report& report, const std::string& key) {
   return it == report.end() ? "" : it->second;
 }
 
-double relative_inf(const VectorXd& a, const VectorXd& b) {
+// ‖a − b‖ / max(‖a‖, ‖b‖): the measure of `contactqp compare`'s pairwise agreement.
+double symmetric_difference(const VectorXd& a, const VectorXd& b) {
   if (a.size() != b.size()) return NAN;
-  const double scale = b.size() ? b.cwiseAbs().maxCoeff() : 0.0;
-  const double difference = a.size() ? (a - b).cwiseAbs().maxCoeff() : 0.0;
-  return scale > 0 ? difference / scale : difference;
+  const double scale = std::max(a.norm(), b.norm());
+  return scale > 0 ? (a - b).norm() / scale : 0.0;
 }
 
 struct Arguments {
   std::string out = std::string(CONTACTQP_SOURCE_DIR) + "/benchmarks/scaling/results";
   std::string levels = "all";
+  std::string scenes;    // scene files separated by commas: run these instead of the levels
   std::string backends;  // empty: every available backend
   double time_cap_seconds = 300;
   double tol = 1e-8;
@@ -252,7 +253,26 @@ struct Arguments {
 int run(const Arguments& arguments) {
   require(arguments.time_cap_seconds > 0, "--time-cap", arguments.time_cap_seconds, "must be positive");
   require(arguments.tol > 0 && arguments.tol < 1, "--tol", arguments.tol, "must lie in (0, 1)");
-  const std::vector<int> levels = parse_levels(arguments.levels, "--levels");
+  // What to solve: the Hertz levels, or the given scene files (named by their path).
+  struct Case {
+    std::string name, text, source;
+  };
+  std::vector<Case> cases;
+  if (arguments.scenes.empty()) {
+    for (int k : parse_levels(arguments.levels, "--levels"))
+      cases.push_back({std::to_string(k), hertz_scene_text(hertz_levels()[k]),
+                       arguments.out + "/scenes/hertz-level-" + std::to_string(k) + ".json"});
+  } else {
+    std::istringstream paths(arguments.scenes);
+    std::string path;
+    while (std::getline(paths, path, ',')) {
+      std::ifstream file(path);
+      if (!file) throw InputError("--scenes", "= " + path + ": cannot be read");
+      std::ostringstream text;
+      text << file.rdbuf();
+      cases.push_back({path, text.str(), ""});
+    }
+  }
   std::vector<Backend> backends;
   if (arguments.backends.empty()) {
     backends = available_backends();
@@ -269,7 +289,8 @@ int run(const Arguments& arguments) {
   std::string backend_list;
   for (Backend backend : backends) backend_list += (backend_list.empty() ? "\"" : ", \"") + to_string(backend) + "\"";
   extra << "{\"benchmark\": \"scaling\", \"tol\": " << arguments.tol << ", \"time_cap_seconds\": "
-        << arguments.time_cap_seconds << ", \"levels\": \"" << arguments.levels << "\", \"backends\": [" << backend_list
+        << arguments.time_cap_seconds << ", \"levels\": \"" << arguments.levels << "\", \"scenes\": \"" << arguments.scenes
+        << "\", \"backends\": [" << backend_list
         << "], \"peak_memory\": \"VmHWM of the forked child, reset before each solve; includes the QP it was given\"}";
   write_file_atomically(arguments.out + "/context.json", context_json(extra.str()));
 
@@ -277,11 +298,10 @@ int run(const Arguments& arguments) {
   std::string csv = std::string(kHeader) + "\n";
   std::map<Backend, std::string> skip_reason;  // backends that hit the cap, and where
 
-  for (int k : levels) {
-    const std::string scene_text = hertz_scene_text(hertz_levels()[k]);
-    const std::string scene_path = arguments.out + "/scenes/hertz-level-" + std::to_string(k) + ".json";
-    write_file_atomically(scene_path, scene_text);
-    Scene scene = parse_scene(scene_text, scene_path);
+  for (const Case& item : cases) {
+    if (!item.source.empty()) write_file_atomically(item.source, item.text);
+    const std::string& k = item.name;
+    Scene scene = parse_scene(item.text, item.source.empty() ? item.name : item.source);
     scene.solver.tol = arguments.tol;
     scene.solver.max_iterations = 100000;
     QuadraticProgram qp;
@@ -293,7 +313,7 @@ int run(const Arguments& arguments) {
       assemble_seconds = model.timings.get("assemble");
     }
     ::malloc_trim(0);  // the mesher's freed memory goes back before the children inherit the heap
-    std::cout << "level " << k << ": " << qp.n_dofs() << " DOFs, " << qp.n_constraints() << " candidates, mesh "
+    std::cout << (item.source.empty() ? "" : "level ") << k << ": " << qp.n_dofs() << " DOFs, " << qp.n_constraints() << " candidates, mesh "
               << number(mesh_seconds) << " s\n";
 
     struct Row {
@@ -335,7 +355,7 @@ int run(const Arguments& arguments) {
       rows.push_back(row);
     }
 
-    // Agreement with active_set's solution on the same mesh.
+    // Agreement with active_set's solution on the same mesh, measured as `contactqp compare` does.
     VectorXd reference_u, reference_lambda;
     bool have_reference = false;
     for (const Row& row : rows)
@@ -348,13 +368,13 @@ int run(const Arguments& arguments) {
       VectorXd u, lambda;
       if (have_reference && row.backend != Backend::ActiveSet && row.status == "converged" &&
           read_vectors(row.vector_path, u, lambda)) {
-        diff_u = relative_inf(u, reference_u);
-        diff_lambda = relative_inf(lambda, reference_lambda);
+        diff_u = symmetric_difference(u, reference_u);
+        diff_lambda = symmetric_difference(lambda, reference_lambda);
       }
       const double total = report_number(r, "phase:total");
       const double linear_total = report_number(r, "linear_total_seconds");
       std::ostringstream line;
-      line << k << ',' << qp.n_dofs() << ',' << qp.n_constraints() << ',' << number(mesh_seconds) << ','
+      line << csv_field(k) << ',' << qp.n_dofs() << ',' << qp.n_constraints() << ',' << number(mesh_seconds) << ','
            << number(assemble_seconds) << ',' << to_string(row.backend) << ',' << row.status << ','
            << report_text(r, "iterations") << ',' << number(report_number(r, "phase:factorize")) << ','
            << number(report_number(r, "phase:condense")) << ',' << number(report_number(r, "phase:iterate")) << ','
@@ -383,6 +403,7 @@ int main(int argc, char** argv) {
   Arguments arguments;
   app.add_option("--out", arguments.out, "Directory for scaling.csv, context.json and the generated scenes");
   app.add_option("--levels", arguments.levels, "Mesh levels: all, or numbers 0-8 separated by commas");
+  app.add_option("--scenes", arguments.scenes, "Scene files separated by commas, solved instead of the levels");
   app.add_option("--backends", arguments.backends, "Backends separated by commas (default: every available one)");
   app.add_option("--time-cap", arguments.time_cap_seconds, "Seconds before a solve is killed and its backend skipped");
   app.add_option("--tol", arguments.tol, "Tolerance of every backend (default 1e-8)");
