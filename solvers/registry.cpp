@@ -16,7 +16,7 @@ std::shared_ptr<const CholeskyFactor> factor_of_K(const QuadraticProgram& qp,
                                                   std::string& message) {
   if (options.K_factor) return options.K_factor;
   Stopwatch clock;
-  auto factor = std::make_shared<const CholeskyFactor>(qp.K);
+  auto factor = std::make_shared<const CholeskyFactor>(qp.K, options.ordering);
   timings.add("factorize", clock.seconds());
   if (!factor->ok()) {
     message = "the stiffness matrix K could not be factorised: " + factor->message() +
@@ -34,6 +34,7 @@ SolveResult dispatch(const QuadraticProgram& qp, const SolveOptions& options) {
     case Backend::UzawaAccelerated: return solve_uzawa_accelerated(qp, options);
     case Backend::Ipopt: return solve_ipopt(qp, options);
     case Backend::Nlopt: return solve_nlopt(qp, options);
+    case Backend::ActiveSet: return solve_active_set(qp, options);
   }
   throw InputError("backend", "= " + std::to_string(static_cast<int>(options.backend)) + ": not a backend");
 }
@@ -44,6 +45,8 @@ void validate_options(const SolveOptions& options) {
   const UzawaOptions& uzawa = options.uzawa;
   if (uzawa.rho_rule != UzawaOptions::RhoRule::Auto)
     require(uzawa.rho > 0 && std::isfinite(uzawa.rho), "rho", uzawa.rho, "must be a positive number");
+  require(options.active_set.max_dense_bytes > 0, "active_set.max_dense_bytes", options.active_set.max_dense_bytes,
+          "must be positive");
   require(backend_available(options.backend), "backend", to_string(options.backend),
           "was not built into this copy of contactqp");
   switch (options.backend) {
@@ -54,6 +57,7 @@ void validate_options(const SolveOptions& options) {
       break;
     case Backend::Ipopt: check_ipopt_options(options); break;
     case Backend::Nlopt: check_nlopt_options(options); break;
+    case Backend::ActiveSet: check_active_set_options(options); break;
   }
 }
 
@@ -68,6 +72,7 @@ bool backend_available(Backend backend) {
     case Backend::UzawaAccelerated: return true;
     case Backend::Ipopt: return true;
     case Backend::Nlopt: return true;
+    case Backend::ActiveSet: return true;
   }
   return false;
 }

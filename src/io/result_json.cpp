@@ -87,7 +87,8 @@ std::string result_json(const RunReport& report) {
   json out;
   out["status"] = to_string(report.result.status);
   out["message"] = report.result.message;
-  out["backend"] = to_string(report.options.backend);
+  out["backend"] = report.no_contact ? "none" : to_string(report.options.backend);
+  out["no_contact"] = report.no_contact;
   out["iterations"] = report.result.iterations;
   out["dofs"] = qp.n_dofs();
   out["constraints"] = qp.n_constraints();

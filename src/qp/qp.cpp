@@ -14,6 +14,7 @@ const std::pair<Backend, const char*> kBackendNames[] = {
     {Backend::UzawaAccelerated, "uzawa_accel"},
     {Backend::Ipopt, "ipopt"},
     {Backend::Nlopt, "nlopt"},
+    {Backend::ActiveSet, "active_set"},
 };
 
 bool all_finite(const SparseMatrix& A) {
