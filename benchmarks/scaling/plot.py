@@ -6,10 +6,11 @@
 Reads scaling.csv (and orderings.csv when present) in RESULTS_DIR (default: results/ beside
 this file) and writes scaling.png (time against DOFs per backend, log-log, with the line of
 one linear solve of the same K; below it the ratio to that line) and scaling-table.md (the
-README's table). Rows that did not run (time cap, skipped) are left out of the plot and kept
+README's summary, one line per mesh, then every run). Rows that did not run (time cap, skipped) are left out of the plot and kept
 in the table.
 """
 import csv
+import json
 import math
 import os
 import sys
@@ -45,7 +46,7 @@ def linear_line(rows):
     return sorted(best.items())
 
 
-def plot(rows, path):
+def plot(rows, path, time_cap):
     backends = []
     for row in rows:
         if row["backend"] not in backends:
@@ -63,15 +64,18 @@ def plot(rows, path):
         if not points:
             continue
         marker = markers[index % len(markers)]
-        top.plot([p[0] for p in points], [p[1] for p in points], marker=marker, label=backend)
+        (drawn,) = top.plot([p[0] for p in points], [p[1] for p in points], marker=marker, label=backend)
+        colour = drawn.get_color()
         bottom.plot([p[0] for p in points], [p[2] for p in points], marker=marker, label=backend)
         for dofs, seconds, _, status in points:
             if status != "converged":
                 top.annotate(status, (dofs, seconds), fontsize=7, textcoords="offset points", xytext=(4, 4))
+        # A run killed at the time cap: a cross at the cap in the backend's colour, labelled.
         capped = [r for r in rows if r["backend"] == backend and r["status"] == "time_cap"]
         for row in capped:
-            top.annotate(f"{backend}: cap", (int(row["dofs"]), top.get_ylim()[1]), fontsize=7,
-                         textcoords="offset points", xytext=(0, -12))
+            top.plot([int(row["dofs"])], [time_cap], "x", color=colour, markersize=9, mew=2)
+            top.annotate(f"{backend}: killed at {time_cap:g} s", (int(row["dofs"]), time_cap), fontsize=7,
+                         ha="right", textcoords="offset points", xytext=(-6, 4))
     top.set_xscale("log")
     top.set_yscale("log")
     top.set_ylabel("wall time of solve() [s]")
@@ -113,6 +117,46 @@ def table(rows):
     return "\n".join(lines).replace(",", " ") + "\n"
 
 
+def grouped(count):
+    """12345 -> '12 345' (thin groups, as the README writes counts)."""
+    return f"{int(count):,}".replace(",", " ")
+
+
+def summary_table(rows):
+    """One line per mesh: active_set against one linear solve, and every backend's total time."""
+    backends = []
+    for row in rows:
+        if row["backend"] not in backends:
+            backends.append(row["backend"])
+    levels = []
+    for row in rows:
+        if row["dofs"] not in levels:
+            levels.append(row["dofs"])
+    lines = ["| DOFs | candidates | one linear solve [s] | active_set: iterations, time [s], ratio | " +
+             " | ".join(f"{b} [s]" for b in backends if b != "active_set") + " | active_set peak memory [MiB] |",
+             "|---:|---:|---:|---|" + "---:|" * (len(backends) - 1) + "---:|"]
+    for dofs in levels:
+        at = {row["backend"]: row for row in rows if row["dofs"] == dofs}
+        active = at.get("active_set", {})
+        cells = []
+        for backend in backends:
+            if backend == "active_set":
+                continue
+            row = at.get(backend)
+            if row is None:
+                cells.append("—")
+            elif row["status"] == "converged":
+                cells.append(f"{cell(row['total_seconds'])} ({row['iterations']} it.)")
+            else:
+                cells.append(row["status"])
+        linear = cell(active.get("linear_total_seconds"))
+        lines.append(f"| {grouped(dofs)} | {at[next(iter(at))]['constraints']} | {linear} | "
+                     f"{active.get('iterations') or '—'}, {cell(active.get('total_seconds'))}, "
+                     f"{cell(active.get('ratio_to_linear'))}× | " + " | ".join(cells) +
+                     f" | {cell(active.get('peak_rss_mb'), 4)} |")
+    return "\n".join(lines) + "\n"
+
+
 def orderings_table(rows):
     lines = ["| DOFs | candidates | ordering | analyse [s] | factorise [s] | solve [s] | condense [s] | "
              "dense solve of all m columns [s] | nnz(L) | reached columns |",
@@ -128,8 +172,13 @@ def orderings_table(rows):
 def main():
     directory = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "results")
     rows = read_rows(os.path.join(directory, "scaling.csv"))
-    plot(rows, os.path.join(directory, "scaling.png"))
-    text = table(rows)
+    context_path = os.path.join(directory, "context.json")
+    time_cap = 300.0
+    if os.path.exists(context_path):
+        with open(context_path) as handle:
+            time_cap = float(json.load(handle).get("time_cap_seconds", time_cap))
+    plot(rows, os.path.join(directory, "scaling.png"), time_cap)
+    text = summary_table(rows) + "\n" + table(rows)
     orderings_path = os.path.join(directory, "orderings.csv")
     if os.path.exists(orderings_path):
         text += "\n" + orderings_table(read_rows(orderings_path))
