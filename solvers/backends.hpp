@@ -11,6 +11,7 @@
 namespace contactqp::detail {
 
 SolveResult solve_uzawa(const QuadraticProgram& qp, const SolveOptions& options);
+SolveResult solve_uzawa_accelerated(const QuadraticProgram& qp, const SolveOptions& options);
 SolveResult solve_ipopt(const QuadraticProgram& qp, const SolveOptions& options);
 SolveResult solve_nlopt(const QuadraticProgram& qp, const SolveOptions& options);
 
@@ -18,6 +19,8 @@ SolveResult solve_nlopt(const QuadraticProgram& qp, const SolveOptions& options)
 // does not accept; called before any work.
 void check_ipopt_options(const SolveOptions& options);
 void check_nlopt_options(const SolveOptions& options);
+void check_active_set_options(const SolveOptions& options);
+SolveResult solve_active_set(const QuadraticProgram& qp, const SolveOptions& options);
 
 // The factorisation of qp.K a CHOLMOD-based backend works with: options.K_factor when the
 // caller supplied one, otherwise a fresh one whose analyse + factorise time is recorded in

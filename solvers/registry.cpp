@@ -17,7 +17,7 @@ std::shared_ptr<const CholeskyFactor> factor_of_K(const QuadraticProgram& qp,
                                                   std::string& message) {
   if (options.K_factor) return options.K_factor;
   Stopwatch clock;
-  auto factor = std::make_shared<const CholeskyFactor>(qp.K);
+  auto factor = std::make_shared<const CholeskyFactor>(qp.K, options.ordering);
   timings.add("factorize", clock.seconds());
   if (!factor->ok()) {
     message = "the stiffness matrix K could not be factorised: " + factor->message() +
@@ -32,8 +32,10 @@ namespace {
 SolveResult dispatch(const QuadraticProgram& qp, const SolveOptions& options) {
   switch (options.backend) {
     case Backend::Uzawa: return solve_uzawa(qp, options);
+    case Backend::UzawaAccelerated: return solve_uzawa_accelerated(qp, options);
     case Backend::Ipopt: return solve_ipopt(qp, options);
     case Backend::Nlopt: return solve_nlopt(qp, options);
+    case Backend::ActiveSet: return solve_active_set(qp, options);
   }
   throw InputError("backend", "= " + std::to_string(static_cast<int>(options.backend)) + ": not a backend");
 }
@@ -44,15 +46,19 @@ void validate_options(const SolveOptions& options) {
   const UzawaOptions& uzawa = options.uzawa;
   if (uzawa.rho_rule != UzawaOptions::RhoRule::Auto)
     require(uzawa.rho > 0 && std::isfinite(uzawa.rho), "rho", uzawa.rho, "must be a positive number");
+  require(options.active_set.max_dense_bytes > 0, "active_set.max_dense_bytes", options.active_set.max_dense_bytes,
+          "must be positive");
   require(backend_available(options.backend), "backend", to_string(options.backend),
           "was not built into this copy of contactqp");
   switch (options.backend) {
     case Backend::Uzawa:
-      reject_options(Backend::Uzawa, options.backend_options,
+    case Backend::UzawaAccelerated:
+      reject_options(options.backend, options.backend_options,
                      "its step is --rho or solver.rho (address other backends' options as ipopt.key=value)");
       break;
     case Backend::Ipopt: check_ipopt_options(options); break;
     case Backend::Nlopt: check_nlopt_options(options); break;
+    case Backend::ActiveSet: check_active_set_options(options); break;
   }
 }
 
@@ -64,8 +70,10 @@ void validate_options(const SolveOptions& options) { detail::validate_options(op
 bool backend_available(Backend backend) {
   switch (backend) {
     case Backend::Uzawa: return true;
+    case Backend::UzawaAccelerated: return true;
     case Backend::Ipopt: return true;
     case Backend::Nlopt: return true;
+    case Backend::ActiveSet: return true;
   }
   return false;
 }

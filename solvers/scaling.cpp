@@ -42,6 +42,7 @@ SolveOptions scaled_options(const SolveOptions& options, const QpScaling& scalin
   SolveOptions scaled = options;
   if (options.uzawa.rho_rule == UzawaOptions::RhoRule::Absolute)
     scaled.uzawa.rho = options.uzawa.rho / scaling.stiffness;
+  scaled.uzawa.rho_unit = options.uzawa.rho_unit * scaling.stiffness;
   if (options.K_factor) scaled.K_factor = options.K_factor->scaled(1.0 / scaling.stiffness);
   if (options.observer) {
     // The observer sees iterates in the caller's units, like the final result.

@@ -1,7 +1,9 @@
 // Spectrum estimates of the condensed contact operator S = B K⁻¹ Bᵀ (m × m, symmetric
 // positive semidefinite), applied matrix-free: S v = B (K⁻¹ (Bᵀ v)), one solve with the
-// CHOLMOD factor of K per application.
+// CHOLMOD factor of K per application. S is never formed.
 #pragma once
+
+#include <vector>
 
 #include "contactqp/cholesky.hpp"
 #include "contactqp/qp.hpp"
@@ -9,15 +11,24 @@
 namespace contactqp::detail {
 
 struct SpectrumEstimate {
-  double lambda_max = 0;  // estimate of the largest eigenvalue of S (0 when m = 0)
+  double lambda_min = 0;  // estimate of the smallest eigenvalue of S on the chosen rows (0 when none)
+  double lambda_max = 0;  // estimate of the largest eigenvalue (0 when none)
+  int rows = 0;           // how many rows of B the block covers
   int applications = 0;   // products with S, i.e. solves with K, spent on the estimate
+  bool converged = false; // both extreme Ritz values settled (or the Krylov space became invariant)
   double seconds = 0;
 };
 
-// Power iteration with the Rayleigh quotient, stopped when it changes by less than
-// `rel_tol` between steps or after `max_steps` products. The Rayleigh quotient approaches
-// λ_max from below.
-SpectrumEstimate estimate_lambda_max(const QuadraticProgram& qp, const CholeskyFactor& K_factor,
-                                     double rel_tol = 1e-4, int max_steps = 200);
+// Lanczos with full reorthogonalisation on the principal block S_R = B_R K⁻¹ B_Rᵀ of the rows
+// R (`rows`; every row when empty). The extreme Ritz values approach λ_max from below and
+// λ_min from above; the iteration stops when, over the last few steps, λ_max has changed by
+// less than `rel_tol_max` and λ_min by less than `rel_tol_min` (relative), when the Krylov
+// space becomes invariant (exact at |R| steps), or after `max_steps` products.
+SpectrumEstimate estimate_spectrum(const QuadraticProgram& qp, const CholeskyFactor& K_factor,
+                                   const std::vector<int>& rows = {}, int max_steps = 400,
+                                   double rel_tol_max = 1e-6, double rel_tol_min = 1e-3);
+
+// λ_max(S) on every row (kept for callers that need only the bound ρ < 2/λ_max(S)).
+SpectrumEstimate estimate_lambda_max(const QuadraticProgram& qp, const CholeskyFactor& K_factor);
 
 }  // namespace contactqp::detail

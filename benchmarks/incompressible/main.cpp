@@ -5,17 +5,12 @@
 //
 //   ./build/benchmarks/incompressible/bench_incompressible [--out DIR] [--quick]
 #include <cmath>
-#include <cstdio>
-#include <ctime>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "context.hpp"
 #include "contactqp/io.hpp"
 #include "contactqp/post.hpp"
 #include "contactqp/solve.hpp"
@@ -46,41 +41,6 @@ std::vector<double> poisson_ratios(bool quick) {
   return {0.3, 0.45, 0.49, 0.499, 0.4999};
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream file(path);
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
-std::string command_output(const std::string& command) {
-  std::string out;
-  if (FILE* pipe = popen(command.c_str(), "r")) {
-    char buffer[256];
-    while (fgets(buffer, sizeof buffer, pipe)) out += buffer;
-    pclose(pipe);
-  }
-  while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
-  return out;
-}
-
-std::string context_json() {
-  char date[64];
-  const std::time_t now = std::time(nullptr);
-  std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-  const nlohmann::json context = {
-      {"benchmark", "incompressible"},
-      {"git_revision", command_output("git -C " CONTACTQP_SOURCE_DIR " rev-parse HEAD 2>/dev/null")},
-      {"git_dirty", !command_output("git -C " CONTACTQP_SOURCE_DIR " status --porcelain 2>/dev/null").empty()},
-      {"compiler", std::string("g++ ") + __VERSION__},
-      {"build_type", CONTACTQP_BUILD_TYPE},
-      {"cores", std::thread::hardware_concurrency()},
-      {"date", date},
-      {"backend", "nlopt"},
-      {"scenes", {"scenes/hertz.json", "scenes/hertz-order2.json"}}};
-  return context.dump(2) + "\n";
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -106,10 +66,9 @@ int main(int argc, char** argv) {
          "error_max_pressure,error_l2,seconds\n";
   for (const Variant& variant : variants(quick)) {
     const std::string path = CONTACTQP_SOURCE_DIR "/" + variant.scene;
-    const std::string text = read_text(path);
     for (double nu : poisson_ratios(quick)) {
       Stopwatch clock;
-      Scene scene = parse_scene(text, path);
+      Scene scene = load_scene(path);
       scene.material.nu = nu;
       scene.body.formulation = variant.formulation == "mixed" ? Formulation::Mixed : Formulation::Displacement;
       if (variant.contact_size > 0) scene.body.mesh.contact_size = variant.contact_size;
@@ -133,7 +92,8 @@ int main(int argc, char** argv) {
     }
   }
   write_file_atomically(csv_path, csv.str());
-  write_file_atomically(out_directory + "/context.json", context_json());
+  write_file_atomically(out_directory + "/context.json",
+                        bench::context_json("incompressible", R"({"backend": "nlopt", "scenes": ["scenes/hertz.json", "scenes/hertz-order2.json"]})"));
   std::cout << "wrote " << csv_path << " and context.json\n";
   return 0;
 }

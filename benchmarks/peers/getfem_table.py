@@ -4,11 +4,15 @@ writes one CSV row per run plus a Markdown table on stdout.
 
     /usr/bin/python3 benchmarks/peers/getfem_table.py --study meshes --out-dir OUT [--order 2]
     /usr/bin/python3 benchmarks/peers/getfem_table.py --study parameters --out-dir OUT
+    /usr/bin/python3 benchmarks/peers/getfem_table.py --study meshes --out-dir OUT \
+        --contact-sizes 0.016,0.008 --formulations integral,nodal --csv getfem.csv
 
 meshes: the Hertz scene (R = 1, E = 1, nu = 0.3, delta = 0.016, symmetry) with contact_size
 0.004, 0.002, 0.001, 0.0005 and size = 50 contact_size (scenes/hertz.json is the 0.002 row),
 GetFEM's default formulation, order 1 (or --order 2); each mesh is kept in OUT as
 mesh_o<order>_cs<contact_size>.msh with its .geo.
+--contact-sizes and --formulations choose other meshes and formulations (benchmarks/tradeoff runs
+both multiplier formulations on its meshes); --csv writes the CSV elsewhere.
 parameters: the 0.002 mesh with each formulation and a range of its parameter.
 """
 
@@ -59,10 +63,12 @@ def percent(value):
 
 def markdown(rows, study):
     if study == "meshes":
-        lines = ["| contact_size | size | DOFs | Newton it. | time [s] (Newton) | mesh [s] | P | b error | p0 error | L2 error |",
-                 "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+        several = len({r["formulation"] for r in rows}) > 1
+        lines = ["| " + ("formulation | " if several else "") +
+                 "contact_size | size | DOFs | Newton it. | time [s] (Newton) | mesh [s] | P | b error | p0 error | L2 error |",
+                 "|" + ("---|" if several else "") + "---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
         for r in rows:
-            lines.append(f"| {r['contact_size']:g} | {r['size']:g} | {r['dofs']} | {r['newton_iterations']} | "
+            lines.append("| " + (f"{r['formulation']} | " if several else "") + f"{r['contact_size']:g} | {r['size']:g} | {r['dofs']} | {r['newton_iterations']} | "
                          f"{r['seconds']:.3f} ({r['seconds_newton']:.3f}) | {r['seconds_mesh']:.3f} | "
                          f"{r['total_force']:.7f} | {percent(r['error_half_width'])} | "
                          f"{percent(r['error_max_pressure'])} | {percent(r['error_l2']).lstrip('+')} |")
@@ -79,21 +85,41 @@ def markdown(rows, study):
     return "\n".join(lines)
 
 
+def sizes(text):
+    values = [float(v) for v in text.split(",")]
+    if not values or not all(v > 0 for v in values):
+        raise argparse.ArgumentTypeError(f"{text!r}: positive numbers separated by commas")
+    return values
+
+
+def formulations(text):
+    names = text.split(",")
+    if not names or not all(n in ("integral", "nodal", "nitsche") for n in names):
+        raise argparse.ArgumentTypeError(f"{text!r}: integral, nodal or nitsche, separated by commas")
+    return names
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--study", choices=("meshes", "parameters"), default="meshes")
     parser.add_argument("--out-dir", required=True)
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--order", type=int, choices=(1, 2), default=1, help="element order of the meshes study")
+    parser.add_argument("--contact-sizes", type=sizes, default=MESHES,
+                        help="meshes study: comma-separated contact sizes (size = 50 x each)")
+    parser.add_argument("--formulations", type=formulations, default=["integral"],
+                        help="meshes study: comma-separated formulations (integral, nodal, nitsche)")
+    parser.add_argument("--csv", help="the CSV (default: OUT/getfem_<study>[_order<k>].csv)")
     args = parser.parse_args()
     os.makedirs(args.out_dir, exist_ok=True)
     if args.study == "meshes":
-        jobs = [dict(contact_size=cs, order=args.order) for cs in MESHES]
+        jobs = [dict(contact_size=cs, order=args.order, formulation=f) for f in args.formulations
+                for cs in args.contact_sizes]
     else:
         jobs = [dict(contact_size=0.002, formulation=f, param=p, theta=t, keep_mesh=False) for f, p, t in PARAMETERS]
     rows = [row for row in (run(args.out_dir, repeat=args.repeat, **job) for job in jobs) if row]
     name = f"getfem_{args.study}" + (f"_order{args.order}" if args.study == "meshes" else "")
-    with open(os.path.join(args.out_dir, name + ".csv"), "w", newline="") as stream:
+    with open(args.csv or os.path.join(args.out_dir, name + ".csv"), "w", newline="") as stream:
         writer = csv.DictWriter(stream, fieldnames=COLUMNS, extrasaction="ignore")
         writer.writeheader()
         writer.writerows(rows)

@@ -31,6 +31,7 @@ struct RunReport {
   std::optional<HertzComparison> hertz;
   std::vector<Reaction> reactions;    // one per displacement load
   Timings timings;                    // every phase: mesh, assemble, factorize, solve, ..., total
+  bool no_contact = false;            // a linear solve with the contact rows dropped (--no-contact)
   std::vector<std::string> warnings;  // also printed on stderr
 };
 

@@ -106,4 +106,8 @@ NodalStress nodal_stresses(const Model& model, const Eigen::VectorXd& displaceme
 // Hertz's pressure at distance x from the centre of contact: p0 sqrt(1 − x²/b²), 0 outside.
 double hertz_pressure(const HertzComparison& hertz, double x);
 
+// The computed pressure of a profile (sorted by s) at s: linear between its points, zero beyond
+// its first and last point.
+double interpolated_pressure(const std::vector<ContactProfilePoint>& profile, double s);
+
 }  // namespace contactqp

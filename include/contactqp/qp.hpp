@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "contactqp/cholesky.hpp"
 #include "contactqp/timer.hpp"
 
 namespace contactqp {
@@ -50,8 +51,10 @@ double primal_objective(const QuadraticProgram& qp, const VectorXd& u);
 
 enum class Backend {
   Uzawa,  // dual projected gradient with a fixed step ρ (the reference paper's method)
+  UzawaAccelerated,  // Uzawa with Nesterov/FISTA extrapolation on the dual and adaptive restart
   Ipopt,  // primal interior point (Ipopt with MUMPS) on the QP itself
   Nlopt,  // the dual max θ(λ), λ ≥ 0, by a bound-constrained NLopt method (L-BFGS by default)
+  ActiveSet,  // primal-dual active set (semismooth Newton) on the contact-condensed problem
 };
 
 enum class Status {
@@ -68,12 +71,17 @@ Backend parse_backend(const std::string& name, const std::string& field = "backe
 std::vector<Backend> all_backends();  // every enum value, in declaration order
 
 struct UzawaOptions {
-  // How the step ρ is chosen. Auto estimates the spectrum of S = B K⁻¹ Bᵀ (one solve per
-  // estimator step) and takes a safe step; Absolute takes `rho` in the QP's own units
-  // (force per length); FractionOfMax takes `rho` as a fraction of ρ_max = 2/λ_max(S).
+  // How the step ρ is chosen. Auto estimates the spectrum of S = B K⁻¹ Bᵀ by Lanczos (one
+  // solve per step) on the rows the unconstrained solution violates, and takes
+  // ρ_opt = 2/(λ_min + λ_max) (uzawa) or 1/λ_max (uzawa_accel); Absolute takes `rho` in the
+  // QP's own units (force per length); FractionOfMax takes `rho` as a fraction of
+  // ρ_max = 2/λ_max(S) on those rows.
   enum class RhoRule { Auto, Absolute, FractionOfMax };
   RhoRule rho_rule = RhoRule::Auto;
   double rho = 0.0;
+  // Set by solve() on its internally scaled copy: the caller's ρ per backend ρ, so that
+  // messages quote ρ in the caller's units. Leave at 1.
+  double rho_unit = 1.0;
 };
 
 struct NloptOptions {
@@ -84,6 +92,13 @@ struct NloptOptions {
   int memory = 0;  // L-BFGS: correction pairs kept (backend option "memory"); 0 = NLopt's choice
 };
 
+struct ActiveSetOptions {
+  // S = B K⁻¹ Bᵀ (m × m) is formed dense when S and one factorisation of its active block,
+  // 16 m² bytes, fit in this limit (m ≤ 8192 at the default 1 GiB). Above it S is applied
+  // matrix-free, one solve with K per product, and its active blocks are solved by CG.
+  double max_dense_bytes = 1024.0 * 1024.0 * 1024.0;
+};
+
 struct SolveOptions {
   Backend backend = Backend::Uzawa;
   double tol = 1e-8;         // relative, dimensionless: each backend's stopping rule uses the scales of certificate.hpp
@@ -92,6 +107,8 @@ struct SolveOptions {
   bool scale = true;         // solve an internally scaled copy, so E and length units do not matter
   UzawaOptions uzawa;
   NloptOptions nlopt;
+  ActiveSetOptions active_set;
+  Ordering ordering = Ordering::Amd;  // fill-reducing ordering of K's factorisation (cholesky.hpp)
   // Backend options as text: Ipopt's own options for ipopt, "algorithm"/"memory" for nlopt.
   // A key "ipopt.print_level" is read only by that backend, so one map can serve several.
   std::map<std::string, std::string> backend_options;  // --backend-option key=value, passed through

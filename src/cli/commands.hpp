@@ -26,6 +26,8 @@ struct SolveArguments {
   std::string json_path, csv_path, vtu_path;
   long long max_elements = BuildOptions{}.max_elements;
   bool verbose = false;
+  bool no_contact = false;  // drop the contact rows: one linear solve of the same K
+  std::string ordering;     // empty: SolveOptions' default (amd)
   std::vector<std::string> backend_options;  // key=value
 };
 

@@ -23,6 +23,7 @@ void apply_overrides(const SolveArguments& arguments, SolveOptions& options) {
     options.max_iterations = arguments.max_iterations;
   }
   options.verbose = arguments.verbose;
+  if (!arguments.ordering.empty()) options.ordering = parse_ordering(arguments.ordering, "--ordering");
   add_backend_options(arguments.backend_options, options);
 }
 
@@ -66,7 +67,8 @@ int run_solve(const SolveArguments& arguments) {
   report.model = &model;
   report.qp = &qp;
   report.options = scene.solver;
-  report.result = solve(qp, scene.solver);
+  report.no_contact = arguments.no_contact;
+  report.result = arguments.no_contact ? solve_without_contact(qp, scene.solver) : solve(qp, scene.solver);
 
   Stopwatch clock;
   report.certificate = certify(qp, report.result.u, report.result.lambda, report.result.K_factor.get());
@@ -75,12 +77,12 @@ int run_solve(const SolveArguments& arguments) {
   report.timings.add("certify", clock.seconds());
   clock.restart();
   report.contact = summarize_contact(model, qp, report.result.u, report.result.lambda);
-  report.hertz = compare_with_hertz(model, report.contact);
+  if (!report.no_contact) report.hertz = compare_with_hertz(model, report.contact);
   report.reactions = reactions(model, qp, report.result.u, report.result.lambda);
   report.timings.add("postprocess", clock.seconds());
 
   report.warnings = model.warnings;
-  if (report.contact.penetrating_non_candidates > 0)
+  if (report.contact.penetrating_non_candidates > 0 && !report.no_contact)
     report.warnings.push_back(std::to_string(report.contact.penetrating_non_candidates) +
                               " boundary nodes outside the candidate set penetrate an obstacle (by up to " +
                               detail::format_value(report.contact.max_non_candidate_penetration) +
@@ -127,6 +129,9 @@ void add_solve_command(CLI::App& app, int& exit_status) {
   command->add_option("--backend-option", arguments->backend_options,
                       "key=value passed to the backend (repeatable); ipopt.key=value addresses one backend");
   command->add_flag("--verbose", arguments->verbose, "Let the backend print its log");
+  command->add_option("--ordering", arguments->ordering, "Fill-reducing ordering of K: amd (default), metis or auto");
+  command->add_flag("--no-contact", arguments->no_contact,
+                    "Drop the contact rows: one linear solve of the same K (the reference for timings)");
   command->callback([arguments, tol, max_iterations, &exit_status] {
     arguments->tol_given = tol->count() > 0;
     arguments->max_iterations_given = max_iterations->count() > 0;

@@ -58,7 +58,10 @@ std::string summary_table(const RunReport& report) {
     auto max = result.diagnostics.find("rho_max");
     if (max != result.diagnostics.end()) rho += format(" (%.3g rho_max)", it->second / max->second);
   }
-  out += format("  backend      %s%s, tol %g\n", to_string(report.options.backend).c_str(), rho.c_str(), report.options.tol);
+  if (report.no_contact)
+    out += format("  backend      none: contact rows dropped (--no-contact), one linear solve of K\n");
+  else
+    out += format("  backend      %s%s, tol %g\n", to_string(report.options.backend).c_str(), rho.c_str(), report.options.tol);
   out += format("  status       %s after %d iterations: %s\n", to_string(result.status).c_str(), result.iterations,
                 result.message.c_str());
   out += format("  certificate  KKT stationarity %.2e, primal %.2e, dual %.2e, complementarity %.2e\n", c.stationarity,

@@ -87,7 +87,8 @@ std::string result_json(const RunReport& report) {
   json out;
   out["status"] = to_string(report.result.status);
   out["message"] = report.result.message;
-  out["backend"] = to_string(report.options.backend);
+  out["backend"] = report.no_contact ? "none" : to_string(report.options.backend);
+  out["no_contact"] = report.no_contact;
   out["iterations"] = report.result.iterations;
   out["dofs"] = qp.n_dofs();
   out["constraints"] = qp.n_constraints();
@@ -128,6 +129,22 @@ std::string result_json(const RunReport& report) {
   for (const char* key : {"rho", "rho_max", "rho_opt"}) {
     auto it = report.result.diagnostics.find(key);
     if (it != report.result.diagnostics.end()) out[key] = number(it->second);
+  }
+  // The Uzawa backends' spectrum estimate of S = B K⁻¹ Bᵀ, and which rows it covers.
+  const auto& d = report.result.diagnostics;
+  if (d.count("spectrum_rows") && d.count("lambda_max_S")) {
+    const double lambda_min = d.count("lambda_min_S") ? d.at("lambda_min_S") : 0.0;
+    out["spectrum_of_S"] = {
+        {"rows", static_cast<int>(d.at("spectrum_rows"))},
+        {"row_set", d.count("spectrum_all_rows") && d.at("spectrum_all_rows") == 0
+                        ? "rows violated by the unconstrained solution K⁻¹f (the rows Uzawa's first step activates)"
+                        : "every constraint row"},
+        {"lambda_min", number(lambda_min)},
+        {"lambda_max", number(d.at("lambda_max_S"))},
+        {"condition_number", lambda_min > 0 ? number(d.at("lambda_max_S") / lambda_min) : json(nullptr)},
+        {"method", "Lanczos with full reorthogonalisation, one solve with K per step"},
+        {"solves", d.count("spectrum_solves") ? static_cast<int>(d.at("spectrum_solves")) : 0},
+        {"seconds", number(report.timings.get("spectrum"))}};
   }
   out["timings"] = timings_json(report.timings);
   out["scene"] = scene_json(model);

@@ -20,7 +20,8 @@ const double kNodes[] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099
 const double kWeights[] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
                            0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
 
-// The computed pressure between profile points, linear in s; zero beyond the candidates.
+}  // namespace
+
 double interpolated_pressure(const std::vector<ContactProfilePoint>& profile, double s) {
   if (profile.empty() || s < profile.front().s || s > profile.back().s) return 0.0;
   auto upper = std::lower_bound(profile.begin(), profile.end(), s,
@@ -30,8 +31,6 @@ double interpolated_pressure(const std::vector<ContactProfilePoint>& profile, do
   const double t = (s - lower->s) / (upper->s - lower->s);
   return (1 - t) * lower->pressure + t * upper->pressure;
 }
-
-}  // namespace
 
 double hertz_pressure(const HertzComparison& hertz, double x) {
   const double b = hertz.half_width;

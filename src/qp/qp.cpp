@@ -11,8 +11,10 @@ namespace {
 // The one name table of the backends: the CLI, the scenes and the JSON use these names.
 const std::pair<Backend, const char*> kBackendNames[] = {
     {Backend::Uzawa, "uzawa"},
+    {Backend::UzawaAccelerated, "uzawa_accel"},
     {Backend::Ipopt, "ipopt"},
     {Backend::Nlopt, "nlopt"},
+    {Backend::ActiveSet, "active_set"},
 };
 
 bool all_finite(const SparseMatrix& A) {

@@ -205,7 +205,7 @@ TEST_CASE("the CLI rejects missing files, bad options and unwritable outputs", "
       {"solve " + scene + " --backend-option nonsense", "--backend-option"},
       {"solve " + scene + " --backend ipopt --backend-option print_lvl=5 --json " + out, "print_lvl"},
       {"solve " + scene + " --backend nlopt --backend-option algorithm=LD_FAST --json " + out, "LD_LBFGS"},
-      {"compare " + scene + " --backends uzawa,ipot --json " + out, "valid: uzawa, ipopt, nlopt"},
+      {"compare " + scene + " --backends uzawa,ipot --json " + out, "--backends = \"ipot\": unknown backend; valid: uzawa"},
       {"compare " + scene + " --backends uzawa,uzawa --json " + out, "listed twice"},
       {"compare " + scene + " --backends , --json " + out, "--backends"},
       {"compare " + scene + " --tol 0 --json " + out, "--tol"},

@@ -412,7 +412,7 @@ int count_nulls(const json& value) {
 
 }  // namespace
 
-TEST_CASE("ρ extremes: tiny ρ stops at the iteration limit, huge ρ diverges; exit 1, finite JSON",
+TEST_CASE("ρ extremes: tiny ρ stops at the iteration limit, huge ρ diverges, exit 1 and finite JSON",
           "[validation][extremes][cli]") {
   TemporaryDirectory directory;
   const std::string scene = directory.path("hertz.json");

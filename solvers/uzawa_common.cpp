@@ -1,0 +1,231 @@
+#include "uzawa_common.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "contactqp/certificate.hpp"
+
+namespace contactqp::detail {
+namespace {
+
+double inf_norm(const VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
+
+std::string format(double x) {
+  std::ostringstream out;
+  out.precision(4);
+  out << x;
+  return out.str();
+}
+
+// How many iterations without progress (DivergenceGuard) count as not converging.
+constexpr int kStallWindow = 200;
+// A residual or a step this many times above the smallest one seen means the iteration is expanding.
+constexpr double kGrowthFactor = 1e6;
+// Relative decrease of the step below which it counts as round-off, not progress.
+constexpr double kRoundOff = 1e-12;
+// A row switched on and off on this many consecutive iterations is in a 2-cycle...
+constexpr int kFlipWindow = 50;
+// ... unless its positive value is below this fraction of ‖λ‖∞ (a row with λ_i = 0 at the
+// optimum and no gap may be switched by a decaying error, which is convergence, not a cycle).
+constexpr double kFlipFloor = 1e-3;
+
+// The rows the unconstrained solution violates: the working set of the spectrum estimate.
+std::vector<int> violated_rows(const QuadraticProgram& qp, const VectorXd& u_free) {
+  const VectorXd r = qp.B * u_free - qp.g;
+  std::vector<int> rows;
+  for (int i = 0; i < r.size(); ++i)
+    if (r[i] > 0) rows.push_back(i);
+  return rows;
+}
+
+// The step from the spectrum of S on `rows` (every row when empty), by the rule of `uzawa`.
+// Plain Uzawa's automatic step is ρ_opt = 2/(λ_min + λ_max), which minimises
+// max |1 − ρμ| over the spectrum; the accelerated iteration needs a step of at most 1/λ_max
+// (Nesterov/FISTA's 1/L), i.e. ρ_max/2.
+UzawaStep choose_step(const QuadraticProgram& qp, const CholeskyFactor& K_factor, const UzawaOptions& uzawa,
+                      UzawaVariant variant, const std::vector<int>& rows) {
+  UzawaStep step;
+  step.all_rows = rows.empty();
+  if (qp.n_constraints() > 0) step.spectrum = estimate_spectrum(qp, K_factor, rows);
+  const SpectrumEstimate& s = step.spectrum;
+  if (s.lambda_max > 0) {
+    step.rho_max = 2.0 / s.lambda_max;
+    step.rho_opt = 2.0 / (s.lambda_min + s.lambda_max);
+  }
+  const bool known = std::isfinite(step.rho_max);
+  switch (uzawa.rho_rule) {
+    case UzawaOptions::RhoRule::Auto:
+      // Without a spectrum (no rows) there is no iteration for the step to change.
+      step.rho = !known ? 1.0 : variant == UzawaVariant::Plain ? step.rho_opt : 0.5 * step.rho_max;
+      break;
+    case UzawaOptions::RhoRule::Absolute: step.rho = uzawa.rho; break;
+    case UzawaOptions::RhoRule::FractionOfMax: step.rho = known ? uzawa.rho * step.rho_max : uzawa.rho; break;
+  }
+  return step;
+}
+
+void record_step(const UzawaStep& step, int spectrum_solves, SolveResult& result) {
+  auto& d = result.diagnostics;
+  d["rho"] = step.rho;
+  d["rho_max"] = step.rho_max;  // erased by solve() when not finite (no rows)
+  d["rho_opt"] = step.rho_opt;
+  d["lambda_max_S"] = step.spectrum.lambda_max;
+  d["lambda_min_S"] = step.spectrum.lambda_min;
+  d["spectrum_rows"] = step.spectrum.rows;
+  d["spectrum_all_rows"] = step.all_rows ? 1 : 0;
+  d["spectrum_converged"] = step.spectrum.converged ? 1 : 0;
+  d["spectrum_solves"] = spectrum_solves;
+}
+
+std::string closing_message(const SolveOptions& options, UzawaVariant variant, const UzawaStep& step,
+                            const UzawaRun& run, bool fell_back) {
+  // The backend sees a scaled QP: quote ρ in the caller's units.
+  const double unit = options.uzawa.rho_unit;
+  const bool known = std::isfinite(step.rho_max);
+  const std::string rho = "ρ = " + format(step.rho * unit) + (known ? " (" + format(step.rho / step.rho_max) + " ρ_max)" : "");
+  const std::string rho_max = known ? "ρ_max = 2/λ_max(S) ≈ " + format(step.rho_max * unit) : "no ρ_max (S = 0)";
+  const std::string note = fell_back ? "; the step from the violated rows did not converge, so ρ was re-chosen from every row" : "";
+  switch (run.status) {
+    case Status::Converged:
+      return "converged: relative change of λ and primal violation below " + format(options.tol) + note;
+    case Status::MaxIterations:
+      return "stopped after " + std::to_string(run.iterations) + " iterations at relative residual " +
+             format(run.residual) + " (best " + format(run.best_residual) + ", tol " + format(options.tol) + ") with " +
+             rho + "; " + (known ? "a larger ρ (up to " + rho_max + ")" : "a larger ρ") + " or more iterations may help" + note;
+    case Status::Diverged:
+      return "diverged after " + std::to_string(run.iterations) + " iterations: " + rho + " is too large (" + rho_max +
+             (variant == UzawaVariant::Accelerated ? "; the accelerated iteration needs about ρ ≤ ρ_max/2" : "") +
+             "); use --rho auto or a smaller ρ" + note;
+    case Status::NumericalError: break;
+  }
+  return "numerical error";
+}
+
+}  // namespace
+
+double uzawa_residual(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& r,
+                      const VectorXd& lambda_from, const VectorXd& lambda_next) {
+  const double change = inf_norm(lambda_next - lambda_from);
+  const double lambda_size = inf_norm(lambda_next);
+  const double rel_change = lambda_size > 0 ? change / lambda_size : change;
+  const double L = length_scale(qp, u);
+  const double violation = r.size() ? std::max(0.0, r.maxCoeff()) : 0.0;
+  const double rel_violation = L > 0 ? violation / L : violation;
+  return std::max(rel_change, rel_violation);
+}
+
+DivergenceGuard::Verdict DivergenceGuard::check(int k, double residual, const VectorXd& lambda_from,
+                                                const VectorXd& lambda_next) {
+  if (!lambda_next.allFinite() || !std::isfinite(residual)) return Verdict::Diverged;
+  const double step = (lambda_next - lambda_from).norm();
+  last_residual_ = residual;
+  // A step smaller by round-off only is no progress: a 2-cycle repeats its steps exactly.
+  if (residual < best_residual_) last_residual_progress_ = k;
+  if (step < (1 - kRoundOff) * best_step_) last_step_progress_ = k;
+  best_residual_ = std::min(best_residual_, residual);
+  best_step_ = std::min(best_step_, step);
+  if (residual <= tol_) return Verdict::Converged;
+  if (residual > kGrowthFactor * best_residual_ || step > kGrowthFactor * best_step_) return Verdict::Diverged;
+
+  const double negligible = kFlipFloor * std::max(inf_norm(lambda_from), inf_norm(lambda_next));
+  bool alternating = false;
+  for (int i = 0; i < lambda_next.size(); ++i) {
+    const bool flip = (lambda_next[i] > 0) != (lambda_from[i] > 0) &&
+                      std::max(lambda_next[i], lambda_from[i]) > negligible;
+    flips_[i] = flip ? flips_[i] + 1 : 0;
+    alternating = alternating || flips_[i] >= kFlipWindow;
+  }
+  // A cycle that is still decaying (the residual keeps improving) is a transient, not divergence.
+  if (alternating && k - last_residual_progress_ >= kFlipWindow) return Verdict::Diverged;
+  if (k - std::max(last_residual_progress_, last_step_progress_) > kStallWindow) return Verdict::Diverged;
+  return Verdict::Continue;
+}
+
+IterationMonitor::IterationMonitor(const UzawaContext& context, int first_k, UzawaRun& run)
+    : context_(context), first_k_(first_k), run_(run), guard_(context.options.tol, context.qp.n_constraints()) {
+  run_.u = context.u_free;
+  run_.lambda = VectorXd::Zero(context.qp.n_constraints());
+}
+
+bool IterationMonitor::stop(int k, const VectorXd& u, const VectorXd& r, const VectorXd& lambda_from,
+                            const VectorXd& lambda_next) {
+  const double residual = uzawa_residual(context_.qp, u, r, lambda_from, lambda_next);
+  if (context_.options.observer) context_.options.observer(first_k_ + k + 1, u, lambda_from);
+  const DivergenceGuard::Verdict verdict = guard_.check(k, residual, lambda_from, lambda_next);
+  if (verdict == DivergenceGuard::Verdict::Diverged) {
+    run_.status = Status::Diverged;
+    return true;
+  }
+  run_.u = u;
+  run_.lambda = lambda_from;
+  if (verdict == DivergenceGuard::Verdict::Converged) {
+    run_.status = Status::Converged;
+    return true;
+  }
+  return false;
+}
+
+void IterationMonitor::finish(int k) {
+  run_.iterations = k + (run_.status == Status::Converged ? 1 : 0);
+  run_.residual = guard_.last();
+  run_.best_residual = guard_.best();
+}
+
+SolveResult run_uzawa(const QuadraticProgram& qp, const SolveOptions& options, UzawaVariant variant,
+                      UzawaLoop loop) {
+  SolveResult result;
+  result.K_factor = factor_of_K(qp, options, result.timings, result.message);
+  if (!result.K_factor) return result;
+  const CholeskyFactor& K_factor = *result.K_factor;
+  const int m = qp.n_constraints();
+
+  Stopwatch clock;
+  const VectorXd u_free = K_factor.solve(qp.f);
+  double solve_seconds = clock.seconds();
+  std::vector<int> working = violated_rows(qp, u_free);
+  if (static_cast<int>(working.size()) == m) working.clear();  // every row: no sub-block
+
+  UzawaStep step = choose_step(qp, K_factor, options.uzawa, variant, working);
+  double spectrum_seconds = step.spectrum.seconds;
+  int spectrum_solves = step.spectrum.applications;
+
+  const UzawaContext context{qp, K_factor, options, u_free};
+  clock.restart();
+  UzawaRun run = loop(context, step, 0, options.max_iterations);
+  solve_seconds += clock.seconds();
+
+  // The working-set step is not guaranteed (ρ_opt of the block may exceed 2/λ_max of all of
+  // S, and rows outside the block may become active): with --rho auto a run that does not
+  // converge starts again from λ = 0 with the step from every row, which is guaranteed.
+  bool fell_back = false;
+  const int remaining = options.max_iterations - run.iterations;
+  if (run.status == Status::Diverged && options.uzawa.rho_rule == UzawaOptions::RhoRule::Auto && !step.all_rows &&
+      remaining > 0) {
+    step = choose_step(qp, K_factor, options.uzawa, variant, {});
+    spectrum_seconds += step.spectrum.seconds;
+    spectrum_solves += step.spectrum.applications;
+    clock.restart();
+    UzawaRun second = loop(context, step, run.iterations, remaining);
+    solve_seconds += clock.seconds();
+    second.iterations += run.iterations;
+    run = std::move(second);
+    fell_back = true;
+  }
+
+  result.timings.add("spectrum", spectrum_seconds);
+  result.timings.add("solve", solve_seconds);
+  record_step(step, spectrum_solves, result);
+  result.diagnostics["rho_fallback"] = fell_back ? 1 : 0;
+  result.diagnostics["residual"] = run.residual;
+  result.diagnostics["best_residual"] = run.best_residual;
+  for (const auto& [name, value] : run.diagnostics) result.diagnostics[name] = value;
+  result.status = run.status;
+  result.iterations = run.iterations;
+  result.message = closing_message(options, variant, step, run, fell_back);
+  result.u = std::move(run.u);
+  result.lambda = std::move(run.lambda);
+  return result;
+}
+
+}  // namespace contactqp::detail
