@@ -5,7 +5,6 @@
 //
 //   ./build/benchmarks/incompressible/bench_incompressible [--out DIR] [--quick]
 #include <cmath>
-#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -14,6 +13,7 @@
 #include "contactqp/io.hpp"
 #include "contactqp/post.hpp"
 #include "contactqp/solve.hpp"
+#include "out_arguments.hpp"
 
 using namespace contactqp;
 
@@ -44,21 +44,11 @@ std::vector<double> poisson_ratios(bool quick) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string out_directory = "out/incompressible";
-  bool quick = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string argument = argv[i];
-    if (argument == "--out" && i + 1 < argc) out_directory = argv[++i];
-    else if (argument == "--quick") quick = true;
-    else {
-      std::cerr << "usage: bench_incompressible [--out DIR] [--quick]\n";
-      return 2;
-    }
-  }
-  std::error_code error;
-  std::filesystem::create_directories(out_directory, error);
-  const std::string csv_path = out_directory + "/incompressible.csv";
-  check_output_path(csv_path, "--out");
+  bench::OutArguments arguments;
+  if (!bench::parse_out_arguments(argc, argv, "incompressible", arguments)) return 2;
+  const bool quick = arguments.quick;
+  const std::string out_directory = arguments.out;
+  const std::string csv_path = bench::output_path(out_directory, "incompressible.csv");
 
   std::ostringstream csv;
   csv.precision(10);
