@@ -159,13 +159,16 @@ class QpNlp : public Ipopt::TNLP {
 };
 
 std::string describe_range(const Ipopt::RegisteredOption& option) {
+  // Integer bounds are inclusive; Ipopt sets the strictness flags only for number options and
+  // leaves them uninitialised otherwise (reading them is undefined: UBSan caught it).
+  const bool number = option.Type() == Ipopt::OT_Number;
   std::string text;
   if (option.HasLower())
-    text += (option.LowerStrict() ? "> " : ">= ") +
-            short_number(option.Type() == Ipopt::OT_Number ? option.LowerNumber() : option.LowerInteger());
+    text += (number && option.LowerStrict() ? "> " : ">= ") +
+            short_number(number ? option.LowerNumber() : option.LowerInteger());
   if (option.HasUpper())
-    text += std::string(text.empty() ? "" : " and ") + (option.UpperStrict() ? "< " : "<= ") +
-            short_number(option.Type() == Ipopt::OT_Number ? option.UpperNumber() : option.UpperInteger());
+    text += std::string(text.empty() ? "" : " and ") + (number && option.UpperStrict() ? "< " : "<= ") +
+            short_number(number ? option.UpperNumber() : option.UpperInteger());
   return text;
 }
 

@@ -4,6 +4,7 @@
 
 #include "backend_options.hpp"
 #include "backends.hpp"
+#include "cleanup.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/solve.hpp"
 #include "scaling.hpp"
@@ -98,7 +99,7 @@ SolveResult solve(const QuadraticProgram& qp, const SolveOptions& options) {
     result = detail::dispatch(qp, options);
   }
 
-  // The final guard: no NaN or Inf ever leaves solve().
+  // The final guard: no NaN or Inf ever leaves solve(), nor numbers whose energy overflows.
   if (result.u.size() != qp.n_dofs() || !result.u.allFinite() ||
       result.lambda.size() != qp.n_constraints() || !result.lambda.allFinite()) {
     if (result.status == Status::Converged) {
@@ -107,7 +108,13 @@ SolveResult solve(const QuadraticProgram& qp, const SolveOptions& options) {
     }
     result.u = VectorXd::Zero(qp.n_dofs());
     result.lambda = VectorXd::Zero(qp.n_constraints());
+  } else if (detail::overflows(qp, result)) {
+    if (result.status == Status::Converged) result.status = Status::NumericalError;
+    result.message += "; its last iterate overflows (energy beyond double range) and is reported as u = 0, λ = 0";
+    result.u = VectorXd::Zero(qp.n_dofs());
+    result.lambda = VectorXd::Zero(qp.n_constraints());
   }
+  detail::zero_separated_multipliers(qp, result, options.tol);
   // A diagnostic that is not finite (ρ_max with no constraints) is absent, not Inf.
   for (auto it = result.diagnostics.begin(); it != result.diagnostics.end();)
     it = std::isfinite(it->second) ? std::next(it) : result.diagnostics.erase(it);

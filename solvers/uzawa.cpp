@@ -13,7 +13,7 @@ namespace {
 UzawaRun plain_loop(const UzawaContext& context, const UzawaStep& step, int first_k, int max_iterations) {
   const QuadraticProgram& qp = context.qp;
   UzawaRun run;
-  IterationMonitor monitor(context, first_k, run);
+  IterationMonitor monitor(context, step, first_k, run);
   VectorXd lambda = VectorXd::Zero(qp.n_constraints());
   VectorXd u = context.u_free;
   int k = 0;

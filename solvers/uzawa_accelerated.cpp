@@ -38,7 +38,7 @@ double momentum_cap(const UzawaStep& step) {
 UzawaRun accelerated_loop(const UzawaContext& context, const UzawaStep& step, int first_k, int max_iterations) {
   const QuadraticProgram& qp = context.qp;
   UzawaRun run;
-  IterationMonitor monitor(context, first_k, run);
+  IterationMonitor monitor(context, step, first_k, run);
   const double beta_cap = momentum_cap(step);
   VectorXd lambda = VectorXd::Zero(qp.n_constraints());  // λ_k
   VectorXd y = lambda;                                    // the extrapolated point y_k

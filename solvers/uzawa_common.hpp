@@ -28,6 +28,9 @@ struct UzawaStep {
   double rho_opt = std::numeric_limits<double>::infinity();   // 2/(λ_min(S_R) + λ_max(S_R))
   bool all_rows = true;                                       // R is every row (else the working set)
   SpectrumEstimate spectrum;
+  // Iterations without progress that count as not converging (DivergenceGuard): 200 at the
+  // automatic step or above, more in proportion below it (see choose_step).
+  double stall_window = 200;
 };
 
 // The stopping rule of both variants: the projected step λ_next − λ_from, relative to λ_next
@@ -44,20 +47,24 @@ double uzawa_residual(const QuadraticProgram& qp, const VectorXd& u, const Vecto
 //    has not improved meanwhile: the 2-cycle λ_i = 0 ↔ ρ r_i that the projection makes of an
 //    expanding component. It may involve a few rows only while the others still converge and
 //    shrink the step, which the next sign would miss;
-//  - no progress for kStallWindow iterations, progress being a new smallest relative residual
-//    or a new smallest step. Plain Uzawa's map is nonexpansive for ρ < 2/λ_max(S), so its step
-//    never grows and shrinks every iteration however small ρ is, even while the relative
-//    residual lingers at a plateau (a primal violation the slowly growing λ has not removed).
+//  - no progress for `stall_window` iterations (UzawaStep), progress being a new smallest
+//    relative residual or a new smallest step. Plain Uzawa's map is nonexpansive for
+//    ρ < 2/λ_max(S), so its step never grows and shrinks every iteration however small ρ is,
+//    even while the relative residual lingers at a plateau (a primal violation the slowly
+//    growing λ has not removed). The accelerated iteration's step and residual do rise for a
+//    while when the contact set changes, for a number of iterations that grows like 1/ρ.
 class DivergenceGuard {
  public:
   enum class Verdict { Continue, Converged, Diverged };
-  DivergenceGuard(double tol, int n_rows) : tol_(tol), flips_(n_rows, 0) {}
+  DivergenceGuard(double tol, int n_rows, double stall_window)
+      : tol_(tol), stall_window_(stall_window), flips_(n_rows, 0) {}
   Verdict check(int k, double residual, const VectorXd& lambda_from, const VectorXd& lambda_next);
   double best() const { return best_residual_; }
   double last() const { return last_residual_; }
 
  private:
   double tol_;
+  double stall_window_;
   std::vector<int> flips_;  // per row: consecutive iterations that switched it on or off
   double best_residual_ = std::numeric_limits<double>::infinity();
   double best_step_ = std::numeric_limits<double>::infinity();
@@ -88,7 +95,7 @@ struct UzawaRun {
 // taken at u = u(λ_from), the observer, the divergence guard, and the iterate to return.
 class IterationMonitor {
  public:
-  IterationMonitor(const UzawaContext& context, int first_k, UzawaRun& run);
+  IterationMonitor(const UzawaContext& context, const UzawaStep& step, int first_k, UzawaRun& run);
   // True when the loop must stop (converged or diverged); run.status says which. Otherwise
   // (u, λ_from) becomes the iterate returned if the next one is not finite.
   bool stop(int k, const VectorXd& u, const VectorXd& r, const VectorXd& lambda_from, const VectorXd& lambda_next);

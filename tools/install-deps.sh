@@ -1,12 +1,15 @@
 #!/bin/sh
 # Installs the Debian packages contactqp needs to build, test and benchmark (run as root on
-# Debian bookworm). Skips apt entirely when everything is already installed.
+# Debian bookworm). Skips apt entirely when everything is already installed. clang and
+# libclang-rt-dev (compiler-rt: libFuzzer and clang's sanitizer runtimes) build the scene
+# parser's fuzzer; g++'s own sanitizer runtimes (libasan8, libubsan1) come with g++.
 set -eu
 packages="cmake g++ make pkg-config
   libeigen3-dev libsuitesparse-dev libopenblas-dev
   coinor-libipopt-dev libnlopt-cxx-dev
   catch2 nlohmann-json3-dev libcli11-dev
   libgmsh-dev gmsh
+  clang libclang-rt-dev
   python3 python3-numpy python3-matplotlib python3-vtk9 python3-getfem"
 missing=""
 for p in $packages; do

@@ -19,6 +19,7 @@
 #include "contactqp/io.hpp"
 #include "contactqp/post.hpp"
 #include "contactqp/solve.hpp"
+#include "out_arguments.hpp"
 
 using namespace contactqp;
 
@@ -84,21 +85,11 @@ std::string context_json() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string out_directory = "out/element_order";
-  bool quick = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string argument = argv[i];
-    if (argument == "--out" && i + 1 < argc) out_directory = argv[++i];
-    else if (argument == "--quick") quick = true;
-    else {
-      std::cerr << "usage: bench_element_order [--out DIR] [--quick]\n";
-      return 2;
-    }
-  }
-  std::error_code error;
-  std::filesystem::create_directories(out_directory, error);
-  const std::string csv_path = out_directory + "/element_order.csv";
-  check_output_path(csv_path, "--out");
+  bench::OutArguments arguments;
+  if (!bench::parse_out_arguments(argc, argv, "element_order", arguments)) return 2;
+  const bool quick = arguments.quick;
+  const std::string out_directory = arguments.out;
+  const std::string csv_path = bench::output_path(out_directory, "element_order.csv");
 
   std::ostringstream csv;
   csv.precision(10);

@@ -71,4 +71,27 @@ Eigen::Matrix3d elasticity_matrix(PlaneModel model, const Material& material);
 Eigen::MatrixXd element_stiffness(const Eigen::Vector2d* nodes, int order, const Eigen::Matrix3d& D,
                                   double thickness);
 
+// What an element's energy is, by body.formulation (README: "Nearly incompressible bodies").
+// Displacement: ½ ∫ εᵀ D ε. Mixed (plane strain): the elasticity matrix split as
+// D = D_dev + k m mᵀ (m = [1, 1, 0], k = λ + 2μ/3 the bulk modulus, D_dev independent of λ),
+// with the volumetric part seen only through the element mean of tr ε — an element-wise
+// constant mean stress p = k·mean(tr ε) condensed out of the P2–P0 mixed form:
+//   ½ ∫ εᵀ D_dev ε + ½ k |T| mean(tr ε)².
+struct ElementLaw {
+  Eigen::Matrix3d D = Eigen::Matrix3d::Zero();  // D (displacement) or D_dev (mixed)
+  double bulk = 0;                              // k (mixed); 0 for the displacement formulation
+  double shear = 0;                             // μ = E / (2(1 + ν))
+  Formulation formulation = Formulation::Displacement;
+  PlaneModel model = PlaneModel::PlaneStrain;
+  double nu = 0;
+};
+ElementLaw element_law(PlaneModel model, const Material& material, Formulation formulation);
+ElementLaw element_law(const Scene& scene);  // the scene's model, material and body.formulation
+
+Eigen::MatrixXd element_stiffness(const Eigen::Vector2d* nodes, int order, const ElementLaw& law, double thickness);
+
+// The element mean of the dilatation tr ε = ∂u_x/∂x + ∂u_y/∂y: (1/|T|) ∫_T tr ε dA, for the
+// element displacements ue (2·nodes, [u0x, u0y, ...]).
+double element_mean_dilatation(const Eigen::Vector2d* nodes, int order, const Eigen::VectorXd& ue);
+
 }  // namespace contactqp

@@ -96,7 +96,8 @@ std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, 
 
 // Nodal stresses (force per area), averaged over the elements sharing each node (weighted by
 // their areas) from each element's stress at that node. σzz = ν(σxx + σyy) in plane strain,
-// 0 in plane stress; von Mises from all four.
+// 0 in plane stress; with the mixed formulation σ = D_dev ε + p (p the element's condensed
+// mean stress) and σzz = p − (2μ/3) tr ε. von Mises from all four.
 struct NodalStress {
   Eigen::VectorXd xx, yy, xy, zz, von_mises;  // n_nodes each
 };

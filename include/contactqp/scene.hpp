@@ -29,6 +29,12 @@ namespace contactqp {
 
 enum class PlaneModel { PlaneStrain, PlaneStress };
 
+// How the strain energy is discretised (body.formulation). Displacement: the standard
+// displacement formulation. Mixed: 6-node triangles with an element-wise constant mean stress
+// condensed out per element (P2–P0), which does not lock as ν → 0.5 (plane strain only;
+// README: "Nearly incompressible bodies").
+enum class Formulation { Displacement, Mixed };
+
 struct Material {
   double E = 0;   // Young's modulus (force per area), > 0
   double nu = 0;  // Poisson's ratio, in (−1, 0.5)
@@ -52,6 +58,7 @@ struct BodySpec {
   std::string file;              // mesh: the file, resolved against the scene file's directory
   bool symmetry = false;   // model only x ≥ 0, with u_x = 0 on x = 0 (boundary "symmetry")
   double thickness = 1.0;  // out-of-plane thickness (length); forces and K are per this thickness
+  Formulation formulation = Formulation::Displacement;  // "displacement" or "mixed"
   MeshSpec mesh;           // generated shapes; for a .geo file only order and size_factor
 };
 
@@ -121,6 +128,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source = "sce
 Scene load_scene(const std::string& path);  // InputError("path", ...) when unreadable
 
 std::string to_string(PlaneModel model);
+std::string to_string(Formulation formulation);  // "displacement", "mixed"
 
 // "auto", a number (absolute ρ) or a fraction of ρ_max written "0.5x".
 UzawaOptions parse_rho(const std::string& text, const std::string& field);

@@ -39,6 +39,10 @@ void apply_overrides(const SolveArguments& arguments, SolveOptions& options);
 // --backend-option key=value pairs into options.backend_options (over the scene's own).
 void add_backend_options(const std::vector<std::string>& pairs, SolveOptions& options);
 
+// InputError when an output path is the scene file or another output's path (field, path pairs;
+// empty paths are not asked for).
+void check_distinct_outputs(const std::string& scene_path, const std::vector<std::pair<std::string, std::string>>& outputs);
+
 // printf into a std::string (one table line; at most 511 characters).
 std::string format(const char* pattern, ...) __attribute__((format(printf, 1, 2)));
 

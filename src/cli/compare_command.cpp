@@ -121,6 +121,7 @@ int run_compare(const CompareArguments& arguments) {
   // Every check of the input first: a run never computes what it cannot save.
   const SolveArguments& solve_arguments = arguments.solve;
   if (!solve_arguments.json_path.empty()) check_output_path(solve_arguments.json_path, "--json");
+  check_distinct_outputs(solve_arguments.scene_path, {{"--json", solve_arguments.json_path}});
   require(solve_arguments.max_elements > 0, "--max-elements", solve_arguments.max_elements, "must be positive");
   const std::vector<Backend> backends = parse_backend_list(arguments.backends);
   Scene scene = load_scene(solve_arguments.scene_path);

@@ -1,5 +1,6 @@
 // contactqp solve SCENE.json: build, solve, certify, post-process, report.
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <iostream>
 
 #include "commands.hpp"
@@ -26,6 +27,22 @@ void apply_overrides(const SolveArguments& arguments, SolveOptions& options) {
   add_backend_options(arguments.backend_options, options);
 }
 
+void check_distinct_outputs(const std::string& scene_path, const std::vector<std::pair<std::string, std::string>>& outputs) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  auto same = [&](const std::string& a, const std::string& b) {
+    return fs::weakly_canonical(a, error) == fs::weakly_canonical(b, error);
+  };
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    const auto& [field, path] = outputs[i];
+    if (path.empty()) continue;
+    if (same(path, scene_path)) throw InputError(field, "= " + path + ": is the scene file; it would be overwritten");
+    for (size_t j = 0; j < i; ++j)
+      if (!outputs[j].second.empty() && same(path, outputs[j].second))
+        throw InputError(field, "= " + path + ": the same file as " + outputs[j].first);
+  }
+}
+
 namespace {
 
 int run_solve(const SolveArguments& arguments) {
@@ -34,6 +51,8 @@ int run_solve(const SolveArguments& arguments) {
   if (!arguments.json_path.empty()) check_output_path(arguments.json_path, "--json");
   if (!arguments.csv_path.empty()) check_output_path(arguments.csv_path, "--csv");
   if (!arguments.vtu_path.empty()) check_output_path(arguments.vtu_path, "--vtu");
+  check_distinct_outputs(arguments.scene_path, {{"--json", arguments.json_path}, {"--csv", arguments.csv_path},
+                                                {"--vtu", arguments.vtu_path}});
   require(arguments.max_elements > 0, "--max-elements", arguments.max_elements, "must be positive");
   Scene scene = load_scene(arguments.scene_path);
   apply_overrides(arguments, scene.solver);

@@ -1,7 +1,10 @@
 // Assembly of K and f over the free DOFs, and of the contact rows.
 #include <Eigen/SparseCore>
+#include <cmath>
+#include <limits>
 
 #include "../contact/contact.hpp"
+#include "contactqp/errors.hpp"
 #include "contactqp/model.hpp"
 
 namespace contactqp {
@@ -18,12 +21,37 @@ void rotate_to_dof_frames(const Model& model, const int* v, int npe, Eigen::Matr
   Ke = T.transpose() * Ke * T;
 }
 
+// Units so far from one that K or f leave double precision are bad input, named as the scene
+// wrote it: beyond the largest double they overflow to Inf; below DBL_MIN/DBL_EPSILON the
+// entries within round-off of the largest are subnormal and lose digits (E = 1e-320 gave
+// "converged" with P = 0).
+void refuse_unrepresentable(const Model& model, const QuadraticProgram& qp) {
+  constexpr double kSmallest = std::numeric_limits<double>::min() / std::numeric_limits<double>::epsilon();
+  const Eigen::Map<const Eigen::VectorXd> k_values(qp.K.valuePtr(), qp.K.nonZeros());
+  const double largest_k = k_values.size() ? k_values.cwiseAbs().maxCoeff() : 1.0;
+  const double largest_f = qp.f.size() ? qp.f.cwiseAbs().maxCoeff() : 0.0;
+  const double thickness = model.scene.body.thickness;
+  const std::string stiffness =
+      "= " + detail::format_value(model.scene.material.E) +
+      (thickness != 1 ? " (body.thickness = " + detail::format_value(thickness) + ")" : std::string());
+  if (!k_values.allFinite())
+    throw InputError("material.E", stiffness + ": the stiffness matrix overflows double precision; use other units");
+  if (largest_k < kSmallest)
+    throw InputError("material.E", stiffness + ": the stiffness matrix underflows double precision; use other units");
+  if (!qp.f.allFinite())
+    throw InputError("load", "gives a load vector that overflows double precision (forces or prescribed displacements "
+                             "too large for these units); use other units");
+  if (largest_f > 0 && largest_f < kSmallest)
+    throw InputError("load", "gives a load vector that underflows double precision (forces or prescribed displacements "
+                             "too small for these units); use other units");
+}
+
 }  // namespace
 
 QuadraticProgram assemble_qp(Model& model) {
   Stopwatch clock;
   const Mesh& mesh = model.mesh;
-  const Eigen::Matrix3d D = elasticity_matrix(model.scene.model, model.scene.material);
+  const ElementLaw law = element_law(model.scene);
   const double thickness = model.scene.body.thickness;
   const int npe = mesh.nodes_per_element();
 
@@ -40,7 +68,7 @@ QuadraticProgram assemble_qp(Model& model) {
       dofs[2 * i] = 2 * v[i];
       dofs[2 * i + 1] = 2 * v[i] + 1;
     }
-    Eigen::MatrixXd Ke = element_stiffness(coordinates.data(), mesh.order, D, thickness);
+    Eigen::MatrixXd Ke = element_stiffness(coordinates.data(), mesh.order, law, thickness);
     rotate_to_dof_frames(model, v, npe, Ke);
     for (int i = 0; i < 2 * npe; ++i) {
       const int row = model.free_index[dofs[i]];
@@ -65,6 +93,7 @@ QuadraticProgram assemble_qp(Model& model) {
   qp.K.setFromTriplets(triplets.begin(), triplets.end());
   qp.K.makeCompressed();
   triplets = {};
+  refuse_unrepresentable(model, qp);
   detail::add_contact_rows(model, qp);
   model.timings.add("assemble", clock.seconds());
   return qp;

@@ -3,6 +3,8 @@
 #include <gmsh.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -36,7 +38,7 @@ void mesh_geometry(const GmshFileRequest& request) {
 
 Mesh read_gmsh_file(const GmshFileRequest& request) {
   // Gmsh opens a missing file as an empty model without a word: check first.
-  if (!std::ifstream(request.path)) throw InputError(request.path, "cannot be read: no such file, or no permission");
+  if (!std::ifstream(request.path)) throw InputError(request.path, "cannot be read: " + std::string(std::strerror(errno)));
   GmshSession session;
   try {
     gmsh::open(request.path);

@@ -66,19 +66,26 @@ void set_graded_size_field(const GradedSize& sizes, const std::vector<int>& fine
 }
 
 double estimate_graded_triangles(const GradedSize& sizes, double area, double fine_length) {
-  // The size grows linearly with the distance d from the fine curves; the band of the body
-  // at distance in [d, d + dd] has area about (ℓ + π d) dd, capped by the body's area.
-  const double cs = sizes.contact_size, h = sizes.size, gamma = sizes.grading;
+  // The size grows linearly with the distance d from the fine curves, s(d) = cs + γ d; the band
+  // of the body at distance in [d, d + dd] has area about (ℓ + π d) dd, capped by the body's
+  // area. Each band's triangles, ∫ (ℓ + π d) / (k s²) dd, are integrated exactly: a midpoint
+  // rule misses almost all of them when cs is far below the band width (contact_size 1e-9
+  // was estimated at 1e5 triangles and took all the memory), and a size that underflows to 0
+  // gives +inf, never 0/0.
+  const double cs = sizes.contact_size, h = sizes.size, gamma = sizes.grading, l = fine_length;
   double covered = 0, triangles = 0;
   const double d_max = std::max(0.0, (h - cs) / gamma);
   const int steps = 400;
   for (int k = 0; k < steps && covered < area; ++k) {
     const double d0 = d_max * k / steps, d1 = d_max * (k + 1) / steps;
-    const double d = 0.5 * (d0 + d1);
-    const double band = std::min((fine_length + kPi * d) * (d1 - d0), area - covered);
-    const double local = cs + gamma * d;
-    triangles += band / (kTriangleArea * local * local);
-    covered += band;
+    const double s0 = cs + gamma * d0, s1 = cs + gamma * d1;
+    const double band = l * (d1 - d0) + 0.5 * kPi * (d1 * d1 - d0 * d0);
+    if (!(band > 0)) continue;
+    // With d = (s − cs)/γ: (1/γ) [(ℓ − π cs/γ)(1/s0 − 1/s1) + (π/γ) ln(s1/s0)].
+    const double in_band = ((l - kPi * cs / gamma) * (1 / s0 - 1 / s1) + kPi / gamma * std::log(s1 / s0)) / gamma;
+    const double fraction = std::min(1.0, (area - covered) / band);
+    triangles += fraction * in_band / kTriangleArea;
+    covered += fraction * band;
   }
   triangles += std::max(0.0, area - covered) / (kTriangleArea * h * h);
   return triangles;

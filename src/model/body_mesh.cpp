@@ -60,8 +60,11 @@ Intervals fine_intervals(const Curve& curve, const std::vector<ObstacleSpec>& ob
 }
 
 void refuse_oversized(double estimate, const BuildOptions& options) {
-  if (estimate > static_cast<double>(options.max_elements))
-    throw InputError("body.mesh", "would have about " + std::to_string(static_cast<long long>(estimate)) +
+  // Written so that a NaN estimate is refused too; sizes that underflow give +inf.
+  if (!(estimate <= static_cast<double>(options.max_elements)))
+    throw InputError("body.mesh", "would have " +
+                                      (std::isfinite(estimate) ? "about " + detail::format_value(std::round(estimate))
+                                                               : std::string("unboundedly many")) +
                                       " triangles, more than the limit of " + std::to_string(options.max_elements) +
                                       "; coarsen body.mesh.size or contact_size, or raise --max-elements");
 }
@@ -128,6 +131,9 @@ Mesh mesh_body(const Scene& scene, double max_gap, const BuildOptions& options) 
   if (scene.body.shape == "half_disc") mesh = mesh_half_disc_body(scene, max_gap, options);
   else if (scene.body.shape == "rectangle") mesh = mesh_rectangle_body(scene, max_gap, options);
   else mesh = read_gmsh_file({scene.body.file, scene.body.mesh.order, scene.body.mesh.size_factor});
+  if (scene.body.formulation == Formulation::Mixed && mesh.order != 2)
+    throw InputError("body.formulation", "= \"mixed\": needs 6-node triangles, and " + scene.body.file +
+                                             " holds 3-node ones (mesh it with gmsh -order 2)");
   if (mesh.n_elements() > options.max_elements)
     throw InputError("body.mesh", "has " + std::to_string(mesh.n_elements()) + " triangles, more than the limit of " +
                                       std::to_string(options.max_elements) + "; raise --max-elements");

@@ -16,6 +16,11 @@ namespace {
 // pushed, and the margin covers the local deformation near the contact zone.
 constexpr double kLoadGapFactor = 1.5;
 
+// Above these Poisson's ratios the displacement formulation's error from locking shows at
+// the percent level on Hertz's problem (README: "Nearly incompressible bodies").
+constexpr double kLinearLockingNu = 0.45;
+constexpr double kQuadraticLockingNu = 0.49;
+
 // The candidate distance: the scene's, or one that follows from the loads. A force load
 // gives no displacement scale before the solve (and K may be singular without contact), so
 // then every facing node of the contact boundary is a candidate.
@@ -41,6 +46,21 @@ void choose_max_gap(const Scene& scene, Model& model) {
     model.max_gap_rule = forces ? "every boundary node facing an obstacle (the loads include forces)"
                                 : "every boundary node facing an obstacle";
   }
+}
+
+// Displacement-based triangles lock as ν → 0.5 in plane strain: the element cannot change
+// shape without changing volume, so the body comes out too stiff. Say so, and what helps.
+void warn_near_incompressible(const Scene& scene, const Mesh& mesh, std::vector<std::string>& warnings) {
+  if (scene.model != PlaneModel::PlaneStrain || scene.body.formulation == Formulation::Mixed) return;
+  const double nu = scene.material.nu;
+  const std::string value = "material.nu = " + detail::format_value(nu);
+  if (mesh.order == 1 && nu > kLinearLockingNu)
+    warnings.push_back(value + " with 3-node triangles in plane strain: they lock as nu -> 0.5 (too stiff: the force "
+                               "for a prescribed push is overstated); use \"formulation\": \"mixed\" under body "
+                               "(6-node triangles with a condensed pressure)");
+  else if (mesh.order == 2 && nu > kQuadraticLockingNu)
+    warnings.push_back(value + " with 6-node triangles in plane strain: they stiffen as nu -> 0.5; "
+                               "\"formulation\": \"mixed\" under body removes the locking");
 }
 
 void rotate_mesh(Mesh& mesh, const Eigen::Matrix2d& rotation) {
@@ -70,6 +90,7 @@ Model build_model(const Scene& scene, const BuildOptions& options) {
   model.scene = scene;
   model.scene.transform = TransformSpec{};
   detail::apply_displacement_conditions(model, scene, Eigen::Matrix2d::Identity());
+  detail::check_rigid_motions(model);  // in the scene's own axes, which the message names
   model.candidates = detail::select_candidates(model.mesh, scene.obstacles, scene.contact.boundary, model.max_gap);
   detail::remove_prescribed_candidates(model);
   const std::vector<int> point_nodes = detail::point_load_nodes(scene, model.mesh, model.warnings);
@@ -82,10 +103,7 @@ Model build_model(const Scene& scene, const BuildOptions& options) {
   detail::apply_displacement_conditions(model, scene, model.rotation);
   model.nodal_force = detail::nodal_forces(model.scene, model.mesh, point_nodes);
 
-  if (scene.model == PlaneModel::PlaneStrain && scene.material.nu > 0.45 && model.mesh.order == 1)
-    model.warnings.push_back("material.nu = " + detail::format_value(scene.material.nu) +
-                             " with linear triangles in plane strain: they lock as ν → 0.5 and understate the "
-                             "compliance; use \"order\": 2 under body.mesh");
+  warn_near_incompressible(scene, model.mesh, model.warnings);
   model.timings.add("model", clock.seconds());
   return model;
 }

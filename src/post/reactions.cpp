@@ -8,7 +8,7 @@ std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, 
                                 const Eigen::VectorXd& lambda) {
   const Mesh& mesh = model.mesh;
   const Eigen::VectorXd displacement = full_displacement(model, u);
-  const Eigen::Matrix3d D = elasticity_matrix(model.scene.model, model.scene.material);
+  const ElementLaw law = element_law(model.scene);
   const int npe = mesh.nodes_per_element();
   // Internal forces K u in global x, y, element by element (K of the prescribed DOFs too).
   Eigen::VectorXd residual = -model.nodal_force;
@@ -20,7 +20,7 @@ std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, 
       x[i] = mesh.nodes[v[i]];
       ue.segment<2>(2 * i) = displacement.segment<2>(2 * v[i]);
     }
-    const Eigen::VectorXd fe = element_stiffness(x.data(), mesh.order, D, model.scene.body.thickness) * ue;
+    const Eigen::VectorXd fe = element_stiffness(x.data(), mesh.order, law, model.scene.body.thickness) * ue;
     for (int i = 0; i < npe; ++i) residual.segment<2>(2 * v[i]) += fe.segment<2>(2 * i);
   }
   // The obstacles push node i with λ n: what remains is the support's push.

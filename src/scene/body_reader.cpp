@@ -10,9 +10,21 @@ namespace contactqp::detail {
 namespace {
 
 const std::vector<std::string> kShapes = {"half_disc", "rectangle", "mesh"};
+const std::vector<std::string> kFormulations = {"displacement", "mixed"};
 
-MeshSpec read_generated_mesh(JsonObject mesh) {
+// The element order the mixed formulation needs: 6-node triangles (P2–P0 is inf-sup stable;
+// with 3-node triangles the divergence is already constant per element and nothing changes).
+constexpr int kMixedOrder = 2;
+
+void require_mixed_order(int order, const std::string& path) {
+  require(order == kMixedOrder, path, order,
+          "must be 2 with \"formulation\": \"mixed\" (6-node triangles; on 3-node ones the mixed formulation "
+          "is the displacement one and locks)");
+}
+
+MeshSpec read_generated_mesh(JsonObject mesh, Formulation formulation) {
   MeshSpec spec;
+  if (formulation == Formulation::Mixed) spec.order = kMixedOrder;
   spec.size = mesh.number("size");
   require(spec.size > 0, mesh.path_of("size"), spec.size, "must be positive");
   spec.contact_size = mesh.number("contact_size");
@@ -26,6 +38,7 @@ MeshSpec read_generated_mesh(JsonObject mesh) {
   if (auto order = mesh.optional_integer("order")) {
     spec.order = *order;
     require(spec.order == 1 || spec.order == 2, mesh.path_of("order"), spec.order, "must be 1 or 2");
+    if (formulation == Formulation::Mixed) require_mixed_order(spec.order, mesh.path_of("order"));
   }
   mesh.finish();
   return spec;
@@ -33,12 +46,13 @@ MeshSpec read_generated_mesh(JsonObject mesh) {
 
 // A .geo file is meshed by Gmsh when the scene is solved: the scene may ask for quadratic
 // elements and scale every size; a .msh file is the mesh as it is.
-MeshSpec read_geo_options(JsonObject mesh) {
+MeshSpec read_geo_options(JsonObject mesh, Formulation formulation) {
   MeshSpec spec;
-  spec.order = 0;  // whatever the .geo file says (Mesh.ElementOrder), 1 by default
+  spec.order = formulation == Formulation::Mixed ? kMixedOrder : 0;  // 0: the .geo file's Mesh.ElementOrder, 1 by default
   if (auto order = mesh.optional_integer("order")) {
     spec.order = *order;
     require(spec.order == 1 || spec.order == 2, mesh.path_of("order"), spec.order, "must be 1 or 2");
+    if (formulation == Formulation::Mixed) require_mixed_order(spec.order, mesh.path_of("order"));
   }
   if (auto factor = mesh.optional_number("size_factor")) {
     spec.size_factor = *factor;
@@ -71,7 +85,8 @@ void read_mesh_file(JsonObject& body, BodySpec& spec, const std::string& source)
   spec.mesh = MeshSpec{};
   spec.mesh.order = 0;  // the element type Gmsh makes or the file holds decides
   if (extension == ".geo") {
-    if (body.has("mesh")) spec.mesh = read_geo_options(body.object("mesh"));
+    if (body.has("mesh")) spec.mesh = read_geo_options(body.object("mesh"), spec.formulation);
+    else if (spec.formulation == Formulation::Mixed) spec.mesh.order = kMixedOrder;
   } else {
     if (body.has("mesh"))
       throw InputError(body.path_of("mesh"), "is not valid for a .msh file: the file is the mesh (its element type decides the order)");
@@ -95,6 +110,10 @@ BodySpec read_body(JsonObject body, const std::string& source) {
     require(spec.height > 0, body.path_of("height"), spec.height, "must be positive");
   }
   spec.symmetry = body.optional_boolean("symmetry").value_or(false);
+  if (auto formulation = body.optional_string("formulation")) {
+    if (*formulation == "mixed") spec.formulation = Formulation::Mixed;
+    else if (*formulation != "displacement") unknown_choice(body.path_of("formulation"), *formulation, "formulation", kFormulations);
+  }
   if (auto thickness = body.optional_number("thickness")) {
     spec.thickness = *thickness;
     require(spec.thickness > 0, body.path_of("thickness"), spec.thickness, "must be positive");
@@ -102,7 +121,7 @@ BodySpec read_body(JsonObject body, const std::string& source) {
   if (spec.shape == "mesh") {
     read_mesh_file(body, spec, source);
   } else {
-    spec.mesh = read_generated_mesh(body.object("mesh"));
+    spec.mesh = read_generated_mesh(body.object("mesh"), spec.formulation);
     const double extent = spec.shape == "half_disc" ? spec.radius : std::min(spec.width, spec.height);
     require(spec.mesh.contact_size <= extent, body.path_of("mesh.contact_size"), spec.mesh.contact_size,
             "must not exceed the body's " + std::string(spec.shape == "half_disc" ? "radius" : "smaller side") +

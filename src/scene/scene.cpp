@@ -3,7 +3,9 @@
 #include "contactqp/scene.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -133,6 +135,10 @@ std::string to_string(PlaneModel model) {
   return model == PlaneModel::PlaneStrain ? "plane_strain" : "plane_stress";
 }
 
+std::string to_string(Formulation formulation) {
+  return formulation == Formulation::Mixed ? "mixed" : "displacement";
+}
+
 std::vector<std::string> boundary_names(const BodySpec& body) {
   std::vector<std::string> names;
   if (body.shape == "half_disc") names = {"arc", "top"};
@@ -166,12 +172,24 @@ UzawaOptions parse_rho(const std::string& text, const std::string& field) {
 
 Scene parse_scene(const std::string& json_text, const std::string& source) {
   json document;
+  // Printing a value in an error message recurses once per level: 100 000 nested brackets
+  // overflowed the stack. A scene nests a few levels; refuse deep nesting while parsing.
+  constexpr int kMaxDepth = 64;
+  const json::parser_callback_t limit_depth = [&](int depth, json::parse_event_t event, json&) {
+    if (depth > kMaxDepth && (event == json::parse_event_t::object_start || event == json::parse_event_t::array_start))
+      throw InputError(source, "is not a scene: arrays and objects nested deeper than " + std::to_string(kMaxDepth) +
+                                   " levels");
+    return true;
+  };
   try {
-    document = json::parse(json_text);
-  } catch (const json::parse_error& error) {
+    document = json::parse(json_text, limit_depth);
+  } catch (const json::exception& error) {  // a syntax error, or a number beyond double range (1e999)
     std::string what = error.what();
     const auto bracket = what.find("] ");
     if (bracket != std::string::npos) what = what.substr(bracket + 2);
+    // The parser quotes what it read last, which may be any bytes: keep the message readable.
+    for (char& c : what)
+      if (static_cast<unsigned char>(c) >= 0x80) c = '?';
     throw InputError(source, "is not valid JSON: " + what);
   }
   Scene scene;
@@ -192,9 +210,17 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   require(scene.material.E > 0, "material.E", scene.material.E, "must be positive");
   scene.material.nu = material.number("nu");
   require(scene.material.nu > -1 && scene.material.nu < 0.5, "material.nu", scene.material.nu, "must lie in (-1, 0.5)");
+  // The largest entry of D, E(1 − ν)/((1 + ν)(1 − 2ν)), and the bulk modulus must be numbers.
+  const double nu = scene.material.nu, stiffest = scene.material.E / ((1 + nu) * (1 - 2 * nu)) * std::max(1.0, 1 - nu);
+  require(std::isfinite(stiffest) && std::isfinite(scene.material.E / (3 * (1 - 2 * nu))), "material.E", scene.material.E,
+          "overflows double precision in the elasticity matrix with material.nu = " + detail::format_value(nu) +
+              "; use other units");
   material.finish();
 
   scene.body = detail::read_body(root.object("body"), source);
+  // Plane stress has a finite bulk stiffness E/(2(1 − ν)) whatever ν: nothing locks, nothing to mix.
+  if (scene.body.formulation == Formulation::Mixed && scene.model != PlaneModel::PlaneStrain)
+    throw InputError("body.formulation", "= \"mixed\": only for \"model\": \"plane_strain\" (plane stress does not lock as ν → 0.5)");
   for (const auto& [item, path] : one_or_many(root.value("load"), "load"))
     scene.loads.push_back(detail::read_load(JsonObject(*item, path), scene.body));
   for (const auto& [item, path] : one_or_many(root.value("obstacle"), "obstacle"))
@@ -212,7 +238,7 @@ Scene load_scene(const std::string& path) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error)) throw InputError(path, "is a directory, not a scene file");
   std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path, "cannot be read: no such file, or no permission");
+  if (!file) throw InputError(path, "cannot be read: " + std::string(std::strerror(errno)));
   std::ostringstream text;
   text << file.rdbuf();
   if (file.bad()) throw InputError(path, "cannot be read");

@@ -66,7 +66,7 @@ TEST_CASE("msh 2.2 and 4.1, orders 1 and 2, read the same mesh with its physical
   for (int k = 0; k < v22.n_nodes(); ++k) CHECK((v22.nodes[k] - v41.nodes[k]).norm() < 1e-12);
 }
 
-TEST_CASE("physical points name nodes; unnamed groups go by their tag", "[unit][gmsh]") {
+TEST_CASE("physical points name nodes, and unnamed groups go by their tag", "[unit][gmsh]") {
   TemporaryDirectory directory;
   const std::string geo = write(directory, "points.geo", R"(
 Point(1) = {0, 0, 0, 0.3}; Point(2) = {1, 0, 0, 0.3}; Point(3) = {0, 1, 0, 0.3};

@@ -119,7 +119,7 @@ TEST_CASE("a singular or nearly singular S (a duplicated row) still gives a solu
   CHECK(r.lambda[0] == Approx(0.0).margin(1e-8));
 }
 
-TEST_CASE("plain active-set steps cycle on a 3 × 3 SPD problem; the safeguard ends it", "[unit][lcp]") {
+TEST_CASE("plain active-set steps cycle on a 3 × 3 SPD problem, and the safeguard ends it", "[unit][lcp]") {
   // Found by a random search (3 × 3 SPD, start λ = 0): the active sets go {2} → {0,1,2} → {0}
   // → {2} → ... forever, while the solution has the active set {0, 2}.
   Eigen::MatrixXd S(3, 3);

@@ -189,7 +189,7 @@ TEST_CASE("contactqp solve --no-contact reports the linear solve like any solve"
   CHECK(solved.err.empty());
 }
 
-TEST_CASE("contactqp solve --backend active_set writes the phase timings; bad options exit 2",
+TEST_CASE("contactqp solve --backend active_set writes the phase timings, and bad options exit 2",
           "[validation][active_set][cli]") {
   TemporaryDirectory directory;
   const std::string scene = source_path("scenes/hertz.json");

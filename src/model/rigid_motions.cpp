@@ -1,0 +1,165 @@
+// Is the body held against rigid motion? Decided from the prescribed DOFs alone, before K is
+// assembled or factorised: a body that can still translate or rotate freely has a singular K,
+// whose factorisation either fails or — worse — succeeds on round-off and returns a
+// displacement with an arbitrary rigid part.
+//
+// In 2D the rigid motions of a connected body are the span of t_x = (1, 0), t_y = (0, 1) and
+// the rotation r(x) = (−(y − y_c), x − x_c)/ℓ (centred at the part's centroid and scaled by its
+// extent ℓ, so the three columns are of the same size). A prescribed component c at node i,
+// along the direction d (its DOF frame's column c), holds the motions m with d·m(x_i) ≠ 0:
+// the part is held exactly when the rows [d·t_x, d·t_y, d·r(x_i)] over its prescribed DOFs
+// have rank 3. The null space of those rows is what moves freely.
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include "contactqp/errors.hpp"
+#include "model_parts.hpp"
+
+namespace contactqp::detail {
+namespace {
+
+// A restraint this weak relative to the strongest (an eigenvalue of the 3 × 3 normal matrix)
+// is none: it comes from round-off, not from a prescribed displacement.
+constexpr double kNullTolerance = 1e-10;
+
+int find(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+// The connected parts of the mesh: part[node], numbered 0, 1, ... in order of first node.
+std::vector<int> connected_parts(const Mesh& mesh, int& n_parts) {
+  std::vector<int> parent(mesh.n_nodes());
+  std::iota(parent.begin(), parent.end(), 0);
+  const int npe = mesh.nodes_per_element();
+  for (int e = 0; e < mesh.n_elements(); ++e) {
+    const int* v = mesh.element(e);
+    for (int i = 1; i < npe; ++i) parent[find(parent, v[i])] = find(parent, v[0]);
+  }
+  std::vector<int> part(mesh.n_nodes(), -1), label(mesh.n_nodes(), -1);
+  n_parts = 0;
+  for (int node = 0; node < mesh.n_nodes(); ++node) {
+    const int root = find(parent, node);
+    if (label[root] < 0) label[root] = n_parts++;
+    part[node] = label[root];
+  }
+  return part;
+}
+
+// x for a message: six digits, and 0 for round-off (below 1e-9 of `scale`).
+std::string number(double x, double scale) {
+  std::ostringstream out;
+  out.precision(6);
+  out << (std::abs(x) <= 1e-9 * scale ? 0.0 : x);
+  return out.str();
+}
+
+std::string direction_name(const Eigen::Vector2d& d) {
+  if (std::abs(d.y()) <= 1e-9 * std::abs(d.x())) return "x";
+  if (std::abs(d.x()) <= 1e-9 * std::abs(d.y())) return "y";
+  const Eigen::Vector2d unit = d.normalized();
+  return "along (" + number(unit.x(), 1) + ", " + number(unit.y(), 1) + ")";
+}
+
+// The free motions, in words, from a basis of the null space (columns (a, b, c) of
+// a·t_x + b·t_y + c·r), and what would hold them.
+struct FreeMotions {
+  std::string what, fix;
+};
+
+FreeMotions describe(const Eigen::MatrixXd& null, const Eigen::Vector2d& centre, double extent) {
+  const int k = static_cast<int>(null.cols());
+  // a t_x + b t_y + c r(x) vanishes at x − x_c = −bℓ/c, y − y_c = aℓ/c. With a free
+  // translation along d too, a rotation about any point of the line through it across d is
+  // free (adding s·d moves the centre by s/c across d): name the one nearest the centroid.
+  auto rotation_centre = [&](const Eigen::Vector3d& v, const Eigen::Vector2d& d) {
+    Eigen::Vector2d point = centre + Eigen::Vector2d(-v[1], v[0]) * extent / v[2];
+    if (d.norm() > 0) {
+      const Eigen::Vector2d across = Eigen::Vector2d(-d.y(), d.x()).normalized();
+      point += (centre - point).dot(across) * across;
+    }
+    return "rotation about (" + number(point.x(), extent) + ", " + number(point.y(), extent) + ")";
+  };
+  const std::string hold_x = "prescribe u_x on some boundary (e.g. \"value\": [0, ...] instead of [null, ...]), or model half of a "
+                             "symmetric body with \"body.symmetry\": true";
+  const std::string hold_any = "add a displacement load that prescribes both components (\"value\": [ux, uy]) on a boundary";
+  if (k == 3) return {"translations in x and y and rotation", hold_any};
+  if (k == 2) {
+    // The translations in the null space: the vectors with c = 0, a plane through two 3-vectors.
+    const Eigen::Vector3d normal = Eigen::Vector3d(null.col(0)).cross(Eigen::Vector3d(null.col(1))).normalized();
+    if (std::abs(normal[0]) < 1e-9 && std::abs(normal[1]) < 1e-9) return {"translations in x and y", hold_any};
+    const Eigen::Vector3d translation = normal.cross(Eigen::Vector3d::UnitZ()).normalized();
+    const Eigen::Vector3d other = normal.cross(translation);  // in the null space, c ≠ 0
+    const std::string name = direction_name(translation.head<2>());
+    return {"translation in " + name + " and " + rotation_centre(other, translation.head<2>()),
+            name == "x" ? hold_x : "prescribe displacements at two or more points that block them, e.g. " + hold_any};
+  }
+  const Eigen::Vector3d v = null.col(0);
+  if (std::abs(v[2]) <= 1e-9 * v.head<2>().norm()) {
+    const std::string name = direction_name(v.head<2>());
+    if (name == "x") return {"translation in x", hold_x};
+    if (name == "y") return {"translation in y", "prescribe u_y on some boundary"};
+    return {"translation " + name, hold_any};
+  }
+  return {rotation_centre(v, Eigen::Vector2d::Zero()), "prescribe a displacement at a second point, away from that centre"};
+}
+
+}  // namespace
+
+void check_rigid_motions(const Model& model) {
+  const Mesh& mesh = model.mesh;
+  int n_parts = 0;
+  const std::vector<int> part = connected_parts(mesh, n_parts);
+  // Each part's area centroid (exact for a symmetric body, whatever its mesh) and extent.
+  std::vector<Eigen::Vector2d> centre(n_parts, Eigen::Vector2d::Zero());
+  std::vector<double> area(n_parts, 0.0);
+  std::vector<int> first_node(n_parts, -1);
+  for (int node = 0; node < mesh.n_nodes(); ++node)
+    if (first_node[part[node]] < 0) first_node[part[node]] = node;
+  for (int e = 0; e < mesh.n_elements(); ++e) {
+    const int* v = mesh.element(e);
+    const double a = std::abs(element_area(mesh, e));
+    centre[part[v[0]]] += a * (mesh.nodes[v[0]] + mesh.nodes[v[1]] + mesh.nodes[v[2]]) / 3.0;
+    area[part[v[0]]] += a;
+  }
+  std::vector<double> extent(n_parts, 0.0);
+  for (int p = 0; p < n_parts; ++p)
+    if (area[p] > 0) centre[p] /= area[p];
+  for (int node = 0; node < mesh.n_nodes(); ++node)
+    extent[part[node]] = std::max(extent[part[node]], (mesh.nodes[node] - centre[part[node]]).norm());
+
+  std::vector<Eigen::Matrix3d> normal(n_parts, Eigen::Matrix3d::Zero());
+  for (int node = 0; node < mesh.n_nodes(); ++node) {
+    const int p = part[node];
+    const double l = extent[p] > 0 ? extent[p] : 1.0;
+    const Eigen::Vector2d x = mesh.nodes[node] - centre[p];
+    const Eigen::Matrix2d frame = dof_frame(model, node);
+    for (int c = 0; c < 2; ++c) {
+      if (model.free_index[2 * node + c] >= 0) continue;
+      const Eigen::Vector2d d = frame.col(c);
+      const Eigen::Vector3d row(d.x(), d.y(), (-d.x() * x.y() + d.y() * x.x()) / l);
+      normal[p] += row * row.transpose();
+    }
+  }
+  for (int p = 0; p < n_parts; ++p) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(normal[p]);
+    const Eigen::Vector3d values = eigen.eigenvalues();  // ascending
+    const double largest = values[2];
+    int k = 0;
+    while (k < 3 && !(values[k] > kNullTolerance * largest)) ++k;
+    if (k == 0) continue;
+    const FreeMotions free = describe(eigen.eigenvectors().leftCols(k), centre[p], extent[p] > 0 ? extent[p] : 1.0);
+    const std::string which =
+        n_parts == 1 ? "the body"
+                     : "the part of the body with node " + std::to_string(first_node[p]) + " at (" +
+                           number(mesh.nodes[first_node[p]].x(), extent[p]) + ", " +
+                           number(mesh.nodes[first_node[p]].y(), extent[p]) + ")";
+    throw InputError("load", "leaves " + which + " free to move rigidly (" + free.what +
+                                 "): no prescribed displacement stops it, so K is singular, and contact alone does not "
+                                 "hold a body here; " + free.fix);
+  }
+}
+
+}  // namespace contactqp::detail
