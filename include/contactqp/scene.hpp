@@ -11,7 +11,9 @@
 //   }
 //
 // Bodies may also be rectangles or Gmsh files, loads forces, obstacles circles and profiles,
-// and a transform may rotate the whole scene (README: "Scene format").
+// and a transform may rotate the whole scene (docs/scenes.md). With "model": "solid" the
+// scene is 3D: every vector has three components, the generated bodies are a hemisphere and a
+// box, and the obstacles planes, spheres, cylinders and flat circular punches.
 //
 // Every key is checked: an unknown key is an error naming it (with the nearest valid key as
 // a hint), a missing required key or a value of the wrong type or range is an error naming
@@ -21,13 +23,18 @@
 #include <Eigen/Core>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "contactqp/qp.hpp"
 
 namespace contactqp {
 
-enum class PlaneModel { PlaneStrain, PlaneStress };
+// The elastic model, and with it the dimension: plane strain and plane stress are 2D (forces
+// per the body's thickness), solid is 3D linear elasticity.
+enum class ElasticModel { PlaneStrain, PlaneStress, Solid };
+using PlaneModel = ElasticModel;  // its name when only the 2D models existed
+int dimension(ElasticModel model);  // 2 or 3
 
 // How the strain energy is discretised (body.formulation). Displacement: the standard
 // displacement formulation. Mixed: 6-node triangles with an element-wise constant mean stress
@@ -44,20 +51,25 @@ struct MeshSpec {
   double size = 0;          // element size far from the contact zone (length), > 0
   double contact_size = 0;  // element size along the candidate contact zone (length), in (0, size]
   double grading = 0.1;     // growth of the element size per unit distance from the contact zone, in (0, 1]
-  int order = 1;            // 1: 3-node, 2: 6-node triangles; 0 for a mesh file: its elements decide
+  int order = 1;            // 1: linear (3-node triangles, 4-node tetrahedra), 2: quadratic (6-, 10-node); 0 for a mesh file: its elements decide
   double size_factor = 1;   // .geo files only: multiplies Gmsh's Mesh.MeshSizeFactor (all sizes), > 0
 };
 
 struct BodySpec {
-  // "half_disc": the lower half of the disc of radius R centred at (0, R);
-  // "rectangle": x ∈ [−width/2, width/2], y ∈ [0, height];
+  // 2D: "half_disc": the lower half of the disc of radius R centred at (0, R);
+  //     "rectangle": x ∈ [−width/2, width/2], y ∈ [0, height].
+  // 3D: "hemisphere": the lower half of the ball of radius R centred at (0, 0, R), flat top z = R;
+  //     "box": x ∈ [−width/2, width/2], y ∈ [−depth/2, depth/2], z ∈ [0, height].
   // "mesh": a Gmsh .msh (4.1 or 2.2) or .geo file, boundaries named by physical groups.
   std::string shape;
-  double radius = 0;             // half_disc: R (length), > 0
-  double width = 0, height = 0;  // rectangle (length), > 0
+  double radius = 0;             // half_disc, hemisphere: R (length), > 0
+  double width = 0, height = 0;  // rectangle, box (length), > 0
+  double depth = 0;              // box: the extent along y (length), > 0
   std::string file;              // mesh: the file, resolved against the scene file's directory
-  bool symmetry = false;   // model only x ≥ 0, with u_x = 0 on x = 0 (boundary "symmetry")
-  double thickness = 1.0;  // out-of-plane thickness (length); forces and K are per this thickness
+  // 2D: model only x ≥ 0, with u_x = 0 on x = 0 (boundary "symmetry"); 3D: only the quarter
+  // x ≥ 0, y ≥ 0, with u_x = 0 on x = 0 (boundary "symmetry_x") and u_y = 0 on y = 0 ("symmetry_y").
+  bool symmetry = false;
+  double thickness = 1.0;  // 2D: out-of-plane thickness (length); forces and K are per this thickness
   Formulation formulation = Formulation::Displacement;  // "displacement" or "mixed"
   MeshSpec mesh;           // generated shapes; for a .geo file only order and size_factor
 };
@@ -69,31 +81,60 @@ struct LoadSpec {
   std::string type;
   std::string path;      // the load's field path in the scene ("load", "load[2]"), for messages
   std::string boundary;  // displacement, traction, pressure: a boundary name
-  // displacement: prescribed components (length); an absent component (JSON null) is left free.
-  std::optional<double> value[2];
+  // displacement: prescribed components (length), dim of them; an absent component (JSON null) is left free.
+  std::optional<double> value[3];
   // traction: force per area; gravity: the acceleration g; point: the force (for the thickness).
-  Eigen::Vector2d vector = Eigen::Vector2d::Zero();
+  // dim components, z = 0 in 2D.
+  Eigen::Vector3d vector = Eigen::Vector3d::Zero();
   double pressure = 0;  // pressure: force per area, positive pushes into the body
   double density = 0;   // gravity: mass per volume, > 0
   std::string region;   // gravity: a named region of a mesh body; "" for the whole body
-  std::optional<Eigen::Vector2d> at;  // point: the location (the nearest node takes the force)
+  std::optional<Eigen::Vector3d> at;  // point: the location (the nearest node takes the force)
   std::string point;                  // point: a named physical point of a mesh body instead of `at`
 
   bool is_force() const { return type != "displacement"; }
 };
 
+// The rigid obstacles, one type per kind. Points and directions have z = 0 in 2D. Every
+// normal or axis is a unit vector (normalised on read).
+struct PlaneObstacle {     // 2D, 3D: the half-space {x : (x − point)·normal ≥ 0} is free
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();  // towards the body
+};
+struct CircleObstacle {    // 2D: a rigid cylinder seen in section; the body stays outside it
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  double radius = 0;       // (length), > 0
+};
+struct ProfileObstacle {   // 2D: a polyline through `points` (its end segments extended)
+  std::vector<Eigen::Vector3d> points;  // ≥ 2, distinct consecutive points
+  bool body_on_left = true;  // the body lies left of the path from the first point to the last
+};
+struct SphereObstacle {    // 3D: a rigid ball; the body stays outside it
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  double radius = 0;       // (length), > 0
+};
+struct CylinderObstacle {  // 3D: a rigid infinite cylinder; the body stays outside it
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();   // a point of its axis
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();   // unit
+  double radius = 0;       // (length), > 0
+};
+// 3D: a rigid flat-ended circular punch (Boussinesq's problem): the disc of `radius` centred at
+// `center`, normal `axis` towards the body, with the punch's body behind it (its rim a sharp edge).
+struct PunchObstacle {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // unit, towards the body
+  double radius = 0;       // a (length), > 0
+};
+
 struct ObstacleSpec {
-  // "plane": the half-space {x : (x − point)·normal ≥ 0} is free;
-  // "circle": a rigid cylinder; the body stays outside it;
-  // "profile": a polyline through `points` (its end segments extended), the body on `body_side`.
-  std::string type;
-  std::string path;        // field path ("obstacle", "obstacle[1]"), for messages
-  Eigen::Vector2d point = Eigen::Vector2d::Zero();   // plane: a point of the surface
-  Eigen::Vector2d normal = Eigen::Vector2d::UnitY();  // plane: unit normal towards the body (normalised on read)
-  Eigen::Vector2d center = Eigen::Vector2d::Zero();  // circle
-  double radius = 0;                                  // circle (length), > 0
-  std::vector<Eigen::Vector2d> points;               // profile: ≥ 2 distinct consecutive points
-  bool body_on_left = true;  // profile: the body lies left of the path from the first point to the last
+  std::string path;  // field path ("obstacle", "obstacle[1]"), for messages
+  std::variant<PlaneObstacle, CircleObstacle, ProfileObstacle, SphereObstacle, CylinderObstacle, PunchObstacle> shape;
+
+  std::string type() const;  // "plane", "circle", "profile", "sphere", "cylinder", "punch"
+  template <class Kind>
+  const Kind* as() const { return std::get_if<Kind>(&shape); }
+  template <class Kind>
+  bool is() const { return std::holds_alternative<Kind>(shape); }
 };
 
 struct ContactSpec {
@@ -102,10 +143,12 @@ struct ContactSpec {
 };
 
 // A rigid rotation of the whole scene about the origin: the body, the load vectors and the
-// obstacles as written are turned by rotate_degrees (counter-clockwise).
+// obstacles as written are turned by rotate_degrees (counter-clockwise about `axis`: always z
+// in 2D, given in 3D).
 struct TransformSpec {
   double rotate_degrees = 0;
-  Eigen::Matrix2d rotation() const;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // unit
+  Eigen::Matrix3d rotation() const;  // exact for multiples of 90° about a coordinate axis
   bool is_identity() const { return rotate_degrees == 0; }
 };
 
@@ -119,6 +162,8 @@ struct Scene {
   ContactSpec contact;
   TransformSpec transform;
   SolveOptions solver;  // from the "solver" section; the command line overrides it
+
+  int dim() const { return dimension(model); }
 };
 
 // Parses and validates a scene. Throws InputError naming the field (or the file) on any
@@ -127,14 +172,15 @@ struct Scene {
 Scene parse_scene(const std::string& json_text, const std::string& source = "scene");
 Scene load_scene(const std::string& path);  // InputError("path", ...) when unreadable
 
-std::string to_string(PlaneModel model);
+std::string to_string(ElasticModel model);  // "plane_strain", "plane_stress", "solid"
 std::string to_string(Formulation formulation);  // "displacement", "mixed"
 
 // "auto", a number (absolute ρ) or a fraction of ρ_max written "0.5x".
 UzawaOptions parse_rho(const std::string& text, const std::string& field);
 
 // The boundaries a generated shape has, e.g. {"arc", "top", "symmetry"} for a symmetric
-// half disc; a scene may name only these. Empty for a mesh body: its physical groups decide,
+// half disc, {"surface", "top", "symmetry_x", "symmetry_y"} for a symmetric hemisphere; a
+// scene may name only these. Empty for a mesh body: its physical groups decide,
 // and build_model() checks the names.
 std::vector<std::string> boundary_names(const BodySpec& body);
 

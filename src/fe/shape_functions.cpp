@@ -10,6 +10,13 @@ constexpr double kB = 0.091576213509771, kWb = 0.5 * 0.109951743655322;
 const QuadraturePoint kDegree4[] = {{kA, kA, kWa}, {1 - 2 * kA, kA, kWa}, {kA, 1 - 2 * kA, kWa},
                                     {kB, kB, kWb}, {1 - 2 * kB, kB, kWb}, {kB, 1 - 2 * kB, kWb}};
 
+const TetrahedronPoint kTetCentroid[] = {{0.25, 0.25, 0.25, 1.0 / 6}};
+constexpr double kTa = 0.5854101966249685, kTb = 0.1381966011250105, kTw = 1.0 / 24;
+const TetrahedronPoint kTetDegree2[] = {{kTb, kTb, kTb, kTw}, {kTa, kTb, kTb, kTw}, {kTb, kTa, kTb, kTw}, {kTb, kTb, kTa, kTw}};
+
+// The vertex pairs of the mid-edge nodes 4–9.
+constexpr int kEdge[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+
 }  // namespace
 
 const double kEdgeGaussT[3] = {0.5 - 0.3872983346207417, 0.5, 0.5 + 0.3872983346207417};
@@ -52,7 +59,7 @@ Eigen::Vector2d reference_node(int i) {
   return {xi[i], eta[i]};
 }
 
-EdgePoint edge_point(double t, const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d* m) {
+EdgePoint edge_point(double t, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d* m) {
   EdgePoint p;
   if (m) {
     p.N[0] = (1 - t) * (1 - 2 * t);
@@ -66,6 +73,48 @@ EdgePoint edge_point(double t, const Eigen::Vector2d& a, const Eigen::Vector2d& 
     p.dx = b - a;
   }
   return p;
+}
+
+int tetrahedron_rule(int order, const TetrahedronPoint*& points) {
+  if (order == 1) {
+    points = kTetCentroid;
+    return 1;
+  }
+  points = kTetDegree2;
+  return 4;
+}
+
+Eigen::VectorXd tetrahedron_values(int order, double xi, double eta, double zeta) {
+  const double L[4] = {1 - xi - eta - zeta, xi, eta, zeta};
+  if (order == 1) return Eigen::Vector4d(L[0], L[1], L[2], L[3]);
+  Eigen::VectorXd N(10);
+  for (int i = 0; i < 4; ++i) N[i] = L[i] * (2 * L[i] - 1);
+  for (int k = 0; k < 6; ++k) N[4 + k] = 4 * L[kEdge[k][0]] * L[kEdge[k][1]];
+  return N;
+}
+
+Eigen::Matrix<double, 3, Eigen::Dynamic> tetrahedron_gradients(int order, double xi, double eta, double zeta) {
+  // Barycentric L0 = 1 − ξ − η − ζ, L1 = ξ, L2 = η, L3 = ζ and their constant gradients.
+  Eigen::Matrix<double, 3, 4> dL;
+  dL << -1, 1, 0, 0,
+        -1, 0, 1, 0,
+        -1, 0, 0, 1;
+  if (order == 1) return dL;
+  const double L[4] = {1 - xi - eta - zeta, xi, eta, zeta};
+  Eigen::Matrix<double, 3, Eigen::Dynamic> dN(3, 10);
+  for (int i = 0; i < 4; ++i) dN.col(i) = (4 * L[i] - 1) * dL.col(i);
+  for (int k = 0; k < 6; ++k) {
+    const int a = kEdge[k][0], b = kEdge[k][1];
+    dN.col(4 + k) = 4 * (L[b] * dL.col(a) + L[a] * dL.col(b));
+  }
+  return dN;
+}
+
+Eigen::Vector3d reference_tetrahedron_node(int i) {
+  static const double vertex[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  if (i < 4) return {vertex[i][0], vertex[i][1], vertex[i][2]};
+  const int a = kEdge[i - 4][0], b = kEdge[i - 4][1];
+  return 0.5 * (Eigen::Vector3d(vertex[a][0], vertex[a][1], vertex[a][2]) + Eigen::Vector3d(vertex[b][0], vertex[b][1], vertex[b][2]));
 }
 
 }  // namespace contactqp::detail
