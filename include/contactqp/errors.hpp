@@ -31,6 +31,13 @@ std::string format_value(const T& value) {
   out << value;
   return out.str();
 }
+// "(x, y)" or "(x, y, z)": the first `dim` components of a point, as format_value writes them.
+template <class Vector>
+std::string format_point(const Vector& x, int dim) {
+  std::string text = "(";
+  for (int c = 0; c < dim; ++c) text += (c ? ", " : "") + format_value(x[c]);
+  return text + ")";
+}
 }  // namespace detail
 
 // require(nu > -1 && nu < 0.5, "material.nu", nu, "must lie in (-1, 0.5)")

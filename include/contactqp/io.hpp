@@ -29,6 +29,7 @@ struct RunReport {
   Certificate certificate;
   ContactSummary contact;
   std::optional<HertzComparison> hertz;
+  std::optional<PunchComparison> boussinesq;  // 3D scenes pressed by a flat punch
   std::vector<Reaction> reactions;    // one per displacement load
   Timings timings;                    // every phase: mesh, assemble, factorize, solve, ..., total
   bool no_contact = false;            // a linear solve with the contact rows dropped (--no-contact)
@@ -42,8 +43,9 @@ std::string result_json(const RunReport& report);
 std::string profile_csv(const RunReport& report);
 
 // The mesh and the solution as a VTK XML unstructured grid (ParaView's .vtu): 3-node or
-// 6-node triangles (VTK_TRIANGLE, VTK_QUADRATIC_TRIANGLE), point data "displacement" (3
-// components, z = 0), "sigma_xx", "sigma_yy", "sigma_xy", "sigma_zz", "von_mises",
+// 6-node triangles (VTK_TRIANGLE, VTK_QUADRATIC_TRIANGLE) or 4-node or 10-node tetrahedra
+// (VTK_TETRA, VTK_QUADRATIC_TETRA), point data "displacement" (3 components, z = 0 in 2D),
+// "sigma_xx", "sigma_yy", "sigma_xy", "sigma_zz" (3D also "sigma_yz", "sigma_xz"), "von_mises",
 // "contact_pressure" and "contact_force" (3 components, the obstacles' force on the body),
 // "gap" (on the contact boundary: the row's slack g − Bu at candidates, the deformed distance
 // to the nearest obstacle elsewhere; 0 off it) and "contact_boundary" (1 on it, 0 off it).

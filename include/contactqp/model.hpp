@@ -13,7 +13,7 @@
 namespace contactqp {
 
 struct BuildOptions {
-  long long max_elements = 4'000'000;  // refuse scenes whose mesh would exceed this many triangles
+  long long max_elements = 4'000'000;  // refuse scenes whose mesh would exceed this many elements (triangles or tetrahedra)
 };
 
 // A contact candidate: one node of the contact boundary that may touch one obstacle.
@@ -21,25 +21,29 @@ struct Candidate {
   int node = -1;
   int obstacle = -1;
   double gap = 0;              // initial gap (x_i − p)·n along the obstacle normal (length)
-  double tributary = 0;        // boundary length the node stands for: ∫ N_i ds over its edges (length)
+  // The boundary the node stands for: in 2D its length ∫ N_i ds over its edges (length); in 3D
+  // its area (docs/scenes.md, "Tributary areas": a third of each linear face, and for 6-node
+  // faces a third of each of the four 3-node sub-triangles the face splits into) (area).
+  double tributary = 0;
 };
 
 struct Model {
   // The scene as solved, in the global frame: its transform is applied (obstacles and load
-  // vectors rotated) and reset; `rotation` remembers it.
+  // vectors rotated) and reset; `rotation` remembers it (a rotation about z in 2D).
   Scene scene;
-  Eigen::Matrix2d rotation = Eigen::Matrix2d::Identity();
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   Mesh mesh;  // in the global frame
-  // DOF d = 2·node + component. free_index[d] is its column in K, or −1 when prescribed.
-  // A node's two components are along the columns of its DOF frame (dof_frame(): x and y,
+  int dim = 2;  // mesh.dim, the scene's dimension
+  // DOF d = dim·node + component. free_index[d] is its column in K, or −1 when prescribed.
+  // A node's components are along the columns of its DOF frame (dof_frame(): the global axes,
   // except at nodes with a prescribed displacement in a rotated scene, whose components stay
   // along the scene's own axes so that "[null, −δ]" keeps its meaning).
   std::vector<int> free_index;
-  Eigen::VectorXd prescribed;  // 2·n_nodes: the prescribed displacement of each prescribed DOF, 0 elsewhere
-  std::vector<int> frame_of_node;      // n_nodes: index into `frames`, −1 for x, y; empty when all are x, y
-  std::vector<Eigen::Matrix2d> frames;  // orthogonal; column c is the direction of DOF component c
-  // 2·n_nodes, global x, y: consistent nodal forces of the force loads (traction, pressure,
-  // gravity, point), for the body's thickness (force).
+  Eigen::VectorXd prescribed;  // dim·n_nodes: the prescribed displacement of each prescribed DOF, 0 elsewhere
+  std::vector<int> frame_of_node;       // n_nodes: index into `frames`, −1 for the global axes; empty when all are
+  std::vector<Eigen::MatrixXd> frames;  // dim × dim, orthogonal; column c is the direction of DOF component c
+  // dim·n_nodes, global axes: consistent nodal forces of the force loads (traction, pressure,
+  // gravity, point), for the body's thickness in 2D (force).
   Eigen::VectorXd nodal_force;
   int n_free = 0;
   std::vector<Candidate> candidates;  // one constraint row each, in row order
@@ -57,17 +61,21 @@ Model build_model(const Scene& scene, const BuildOptions& options = {});
 // one row of B and g per candidate. Records "assemble" in model timings.
 QuadraticProgram assemble_qp(Model& model);
 
-// The full nodal displacement field (2·n_nodes, global x, y) from the free DOFs u.
+// The full nodal displacement field (dim·n_nodes, global axes) from the free DOFs u.
 Eigen::VectorXd full_displacement(const Model& model, const Eigen::VectorXd& u);
 
-// The directions of a node's two DOF components, as columns (the identity for x, y).
-Eigen::Matrix2d dof_frame(const Model& model, int node);
+// The directions of a node's DOF components, as columns (dim × dim; the identity for the global axes).
+Eigen::MatrixXd dof_frame(const Model& model, int node);
 
-// Elasticity matrix D (stress = D · [εxx, εyy, 2εxy]) of the scene's plane model.
-Eigen::Matrix3d elasticity_matrix(PlaneModel model, const Material& material);
+// Voigt size of the strain in dim dimensions: 3 ([εxx, εyy, 2εxy]) or 6 ([εxx, εyy, εzz, 2εyz, 2εxz, 2εxy]).
+int voigt_size(int dim);
 
-// Stiffness of one triangle (2·nodes_per_element square, DOFs [u0x, u0y, u1x, ...]), per
-// `thickness`. Isoparametric: quadratic triangles may have curved sides.
+// Elasticity matrix D (stress = D · ε in Voigt form) of the model: 3 × 3 for the plane
+// models, 6 × 6 for solid.
+Eigen::MatrixXd elasticity_matrix(ElasticModel model, const Material& material);
+
+// Stiffness of one triangle (2D convenience form: 2·nodes_per_element square, DOFs [u0x, u0y,
+// u1x, ...]), per `thickness`. Isoparametric: quadratic triangles may have curved sides.
 Eigen::MatrixXd element_stiffness(const Eigen::Vector2d* nodes, int order, const Eigen::Matrix3d& D,
                                   double thickness);
 
@@ -78,20 +86,25 @@ Eigen::MatrixXd element_stiffness(const Eigen::Vector2d* nodes, int order, const
 // constant mean stress p = k·mean(tr ε) condensed out of the P2–P0 mixed form:
 //   ½ ∫ εᵀ D_dev ε + ½ k |T| mean(tr ε)².
 struct ElementLaw {
-  Eigen::Matrix3d D = Eigen::Matrix3d::Zero();  // D (displacement) or D_dev (mixed)
+  Eigen::MatrixXd D = Eigen::Matrix3d::Zero();  // D (displacement) or D_dev (mixed), voigt_size(dim) square
   double bulk = 0;                              // k (mixed); 0 for the displacement formulation
   double shear = 0;                             // μ = E / (2(1 + ν))
   Formulation formulation = Formulation::Displacement;
-  PlaneModel model = PlaneModel::PlaneStrain;
+  ElasticModel model = ElasticModel::PlaneStrain;
   double nu = 0;
 };
-ElementLaw element_law(PlaneModel model, const Material& material, Formulation formulation);
+ElementLaw element_law(ElasticModel model, const Material& material, Formulation formulation);
 ElementLaw element_law(const Scene& scene);  // the scene's model, material and body.formulation
 
+// Stiffness of one element of any type (dim·nodes_per_element square, DOFs [u0x, u0y, (u0z,)
+// u1x, ...]); per `thickness` in 2D, ignored in 3D. `nodes` holds nodes_per_element positions
+// in the element's node order.
+Eigen::MatrixXd element_stiffness(ElementType type, const Eigen::Vector3d* nodes, const ElementLaw& law, double thickness);
 Eigen::MatrixXd element_stiffness(const Eigen::Vector2d* nodes, int order, const ElementLaw& law, double thickness);
 
-// The element mean of the dilatation tr ε = ∂u_x/∂x + ∂u_y/∂y: (1/|T|) ∫_T tr ε dA, for the
-// element displacements ue (2·nodes, [u0x, u0y, ...]).
+// The element mean of the dilatation tr ε = ∂u_x/∂x + ∂u_y/∂y of a triangle: (1/|T|) ∫_T tr ε
+// dA, for the element displacements ue (2·nodes, [u0x, u0y, ...]).
+double element_mean_dilatation(const Eigen::Vector3d* nodes, int order, const Eigen::VectorXd& ue);
 double element_mean_dilatation(const Eigen::Vector2d* nodes, int order, const Eigen::VectorXd& ue);
 
 }  // namespace contactqp

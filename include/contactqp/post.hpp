@@ -1,5 +1,7 @@
-// Post-processing of a solution: contact pressure, total force, contact half-width, and the
-// comparison with Hertz's analytic solution for a cylinder on a rigid plane.
+// Post-processing of a solution: contact pressure, total force, the contact zone's size (a
+// half-width b in 2D, a radius a and an area in 3D), and the comparison with the closed forms:
+// Hertz for a cylinder (2D) or a sphere (3D) on a plane or another one, Boussinesq for a rigid
+// flat punch (3D).
 #pragma once
 
 #include <optional>
@@ -11,8 +13,10 @@
 namespace contactqp {
 
 struct ContactProfilePoint {
-  double s = 0;         // position along the obstacle surface (length), see surface_coordinate in contact.hpp
-  double pressure = 0;  // λ_i / (w_i · thickness): force per area, compression positive
+  // 2D: position along the obstacle surface (length), see surface_coordinate in contact.hpp;
+  // 3D: distance r from the contact centre, across the obstacle normal there (length).
+  double s = 0;
+  double pressure = 0;  // λ_i / (w_i · thickness) (2D), λ_i / w_i (3D): force per area, compression positive
   double force = 0;     // λ_i, the nodal contact force (for the model's thickness)
   int node = -1;
   int obstacle = -1;
@@ -22,16 +26,25 @@ struct ContactProfilePoint {
 struct ObstacleContact {
   int obstacle = -1;
   std::vector<ContactProfilePoint> profile;  // its candidates, sorted by s (x ≥ 0 only with symmetry)
-  double total_force = 0;    // Σ λ_i, doubled when a symmetry plane halves the model (force)
-  double line_load = 0;      // total_force / thickness (force per length)
-  // Σ λ_i n_i: the obstacle's resultant force on the body (global x, y; for the whole body
+  // Σ λ_i for the whole body: doubled when a symmetry plane halves the 2D model, four times
+  // the 3D quarter model's (force).
+  double total_force = 0;
+  double line_load = 0;      // 2D: total_force / thickness (force per length); 3D: total_force
+  // Σ λ_i n_i: the obstacle's resultant force on the body (global axes; for the whole body
   // with symmetry). Its length is Hertz's P; on a curved obstacle it is below total_force.
-  Eigen::Vector2d resultant = Eigen::Vector2d::Zero();
-  // 2·sqrt(Σλ(s − s̄)² / Σλ): equals b for a Hertz profile and, unlike the last loaded node,
-  // does not jump by ±h/2 from mesh to mesh.
+  Eigen::Vector3d resultant = Eigen::Vector3d::Zero();
+  // 2D: 2·sqrt(Σλ(s − s̄)² / Σλ): equals b for a Hertz profile and, unlike the last loaded
+  // node, does not jump by ±h/2 from mesh to mesh. 0 in 3D.
   double half_width = 0;
-  double half_width_last_node = 0;  // |s − s̄| of the farthest node carrying force
-  double centre = 0;                // s̄, the centre of pressure (0 with symmetry)
+  double half_width_last_node = 0;  // 2D: |s − s̄| of the farthest node carrying force
+  double centre = 0;                // 2D: s̄, the centre of pressure (0 with symmetry)
+  // 3D: the moment estimate a = sqrt(5/2 · Σλ r² / Σλ) (exact for a Hertz pressure, whose
+  // <r²> over the disc is 2a²/5), the r of the farthest node carrying force, the loaded area
+  // (Σ w_i over the nodes carrying force, for the whole body) and the centre of pressure.
+  double contact_radius = 0;
+  double contact_radius_last_node = 0;
+  double contact_area = 0;
+  Eigen::Vector3d centre_point = Eigen::Vector3d::Zero();
   double max_pressure = 0;
   int contact_nodes = 0;            // candidates carrying force (λ_i > 1e-8 · max λ)
 };
@@ -46,6 +59,9 @@ struct ContactSummary {
   double half_width = 0;
   double half_width_last_node = 0;
   double centre = 0;
+  double contact_radius = 0;
+  double contact_radius_last_node = 0;
+  double contact_area = 0;
   double max_pressure = 0;  // over all obstacles
   int contact_nodes = 0;    // over all obstacles
   // Boundary nodes outside the candidate set that end up inside an obstacle: a sign that
@@ -58,16 +74,20 @@ ContactSummary summarize_contact(const Model& model, const QuadraticProgram& qp,
                                  const Eigen::VectorXd& lambda);
 
 struct HertzComparison {
+  int dim = 2;  // 2: two cylinders (b, per length); 3: two spheres (a)
   // The radius of relative curvature, 1/R = 1/R_body + 1/R_obstacle, and where it came from:
-  // "body.radius" (half disc on a plane), "obstacle.radius" (a rigid circle into a flat
-  // rectangle), "body.radius and obstacle.radius", "fitted" (a mesh body: a circle through
-  // the nodes in contact) or "fitted and obstacle.radius".
+  // "body.radius" (half disc or hemisphere on a plane), "obstacle.radius" (a rigid circle or
+  // sphere into a flat body), "body.radius and obstacle.radius", "fitted" (a mesh body: a
+  // circle or sphere through the nodes in contact) or "fitted and obstacle.radius".
   double radius = 0;
   std::string radius_source;
-  double effective_modulus = 0;   // E* = E/(1 − ν²) in plane strain, E in plane stress
-  double half_width = 0;          // b = sqrt(4 P R / (π E*)) for the computed line load P
-  double max_pressure = 0;        // p0 = 2P / (π b)
-  double error_half_width = 0;    // (b_computed − b) / b
+  double effective_modulus = 0;   // E* = E/(1 − ν²) in plane strain and solid, E in plane stress
+  double force = 0;               // P: 2D per length, 3D the whole force
+  double half_width = 0;          // 2D: b = sqrt(4 P R / (π E*)) for the computed line load P
+  double contact_radius = 0;      // 3D: a = (3 P R / (4 E*))^(1/3) for the computed force P
+  double max_pressure = 0;        // p0 = 2P / (π b) (2D), 3P / (2π a²) (3D)
+  double error_half_width = 0;    // 2D: (b_computed − b) / b
+  double error_contact_radius = 0;  // 3D: (a_computed − a) / a, a_computed the moment estimate
   double error_max_pressure = 0;  // (p_max − p0) / p0
   double error_l2 = 0;            // ‖p_h − p_Hertz‖_L2 / ‖p_Hertz‖_L2 over the contact zone
 };
@@ -89,21 +109,41 @@ std::optional<HertzComparison> compare_with_hertz(const Model& model, const Cont
 struct Reaction {
   std::string load;      // the load's field path, e.g. "load[0]"
   std::string boundary;  // its boundary
-  Eigen::Vector2d force = Eigen::Vector2d::Zero();
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // z = 0 in 2D
 };
 std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
                                 const Eigen::VectorXd& lambda);
 
 // Nodal stresses (force per area), averaged over the elements sharing each node (weighted by
-// their areas) from each element's stress at that node. σzz = ν(σxx + σyy) in plane strain,
-// 0 in plane stress; with the mixed formulation σ = D_dev ε + p (p the element's condensed
-// mean stress) and σzz = p − (2μ/3) tr ε. von Mises from all four.
+// their areas or volumes) from each element's stress at that node. In 2D σzz = ν(σxx + σyy)
+// in plane strain, 0 in plane stress, and σyz = σxz = 0; with the mixed formulation
+// σ = D_dev ε + p (p the element's condensed mean stress) and σzz = p − (2μ/3) tr ε. In 3D all
+// six components from σ = D ε. von Mises from all of them.
 struct NodalStress {
-  Eigen::VectorXd xx, yy, xy, zz, von_mises;  // n_nodes each
+  Eigen::VectorXd xx, yy, xy, zz, yz, xz, von_mises;  // n_nodes each
 };
 NodalStress nodal_stresses(const Model& model, const Eigen::VectorXd& displacement);  // full_displacement()
 
-// Hertz's pressure at distance x from the centre of contact: p0 sqrt(1 − x²/b²), 0 outside.
+// Boussinesq's rigid flat circular punch of radius a pressed by δ into a half-space (3D):
+// P = 2 a E* δ and p(r) = P / (2π a sqrt(a² − r²)). δ is the approach the scene prescribes:
+// the displacement loads' push along the punch axis (one value for all of them).
+struct PunchComparison {
+  double radius = 0;             // a (length)
+  double approach = 0;           // δ (length)
+  double effective_modulus = 0;  // E* = E/(1 − ν²)
+  double force = 0;              // Boussinesq's P = 2 a E* δ
+  double error_force = 0;        // (P_computed − P) / P
+  // max over the loaded nodes with r ≤ 0.8a of |p(r)·2πa·sqrt(a² − r²)/P_computed − 1|: how far
+  // the pressure's shape is from Boussinesq's, away from the singular rim
+  double shape_error = 0;
+};
+
+// The comparison for a scene whose obstacle carrying the most force is a punch; nullopt when
+// it is not one, or no single approach δ follows from the loads.
+std::optional<PunchComparison> compare_with_boussinesq(const Model& model, const ContactSummary& contact);
+
+// Hertz's pressure at distance x from the centre of contact: p0 sqrt(1 − x²/b²), 0 outside
+// (3D: at distance r, with the contact radius a for b).
 double hertz_pressure(const HertzComparison& hertz, double x);
 
 // The computed pressure of a profile (sorted by s) at s: linear between its points, zero beyond

@@ -184,6 +184,12 @@ UzawaOptions parse_rho(const std::string& text, const std::string& field);
 // and build_model() checks the names.
 std::vector<std::string> boundary_names(const BodySpec& body);
 
+// The boundaries a symmetric generated body is cut by, and the displacement component each
+// holds at zero: {"symmetry"} (x = 0, u_x) in 2D; {"symmetry_x", "symmetry_y"} (x = 0, u_x and
+// y = 0, u_y) in 3D.
+std::vector<std::string> symmetry_boundaries(int dim);
+int symmetry_component(const std::string& boundary);  // 0 for "symmetry" and "symmetry_x", 1 for "symmetry_y"
+
 // The same scene seen after its transform: obstacles and load vectors rotated, the transform
 // reset to the identity. (The body's mesh is rotated by build_model.)
 Scene rotated(const Scene& scene);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "contactqp/model.hpp"
@@ -12,26 +13,32 @@ namespace contactqp::detail {
 // point, and that normal (unit, from the obstacle towards the body). For a profile whose
 // closest point is a vertex, the normal points from the vertex to the point; the gap is
 // signed by the side of the vertex's pseudo-normal (negative inside the obstacle).
+// Points and normals are 3-vectors (z = 0 in 2D). A punch's rim is a sharp edge: past it the
+// normal points from the rim to x.
 struct ObstacleProjection {
   double gap = 0;
-  Eigen::Vector2d normal = Eigen::Vector2d::UnitY();
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();
 };
-ObstacleProjection project(const ObstacleSpec& obstacle, const Eigen::Vector2d& x);
+ObstacleProjection project(const ObstacleSpec& obstacle, const Eigen::Vector3d& x);
+ObstacleProjection project(const ObstacleSpec& obstacle, const Eigen::Vector2d& x);  // 2D: (x, y, 0)
 
-// The position of x's closest point along the obstacle surface (length): a plane from its
+// 2D: the position of x's closest point along the obstacle surface (length): a plane from its
 // `point` along t = (n_y, −n_x); a circle by arc length from the direction `origin` (unit,
 // from the centre), increasing along t; a profile by arc length from its first point.
+double surface_coordinate(const ObstacleSpec& obstacle, const Eigen::Vector3d& x, const Eigen::Vector3d& origin);
 double surface_coordinate(const ObstacleSpec& obstacle, const Eigen::Vector2d& x, const Eigen::Vector2d& origin);
 
-// Curvature of the obstacle's surface seen from the body: 1/r for a circle, 0 for a plane;
-// 0 for a profile (piecewise flat).
-double obstacle_curvature(const ObstacleSpec& obstacle);
+// Curvature of the obstacle's surface seen from the body, when it is the same in every
+// direction: 1/r for a circle or a sphere, 0 for a plane or a punch's face; 0 for a profile
+// (piecewise flat); nullopt for a cylinder (curved one way only).
+std::optional<double> obstacle_curvature(const ObstacleSpec& obstacle);
 
-// Outward unit normal of a boundary at each of its nodes (average of its edges' normals),
-// and ∫ N_i ds (the node's tributary length) — keyed by node index.
+// Outward unit normal of a boundary at each of its nodes (average of its faces' normals),
+// and the node's tributary length (2D: ∫ N_i ds) or area (3D: see Candidate::tributary) —
+// keyed by node index.
 struct BoundaryNodeGeometry {
   std::vector<int> nodes;
-  std::vector<Eigen::Vector2d> normals;
+  std::vector<Eigen::Vector3d> normals;
   std::vector<double> tributary;
 };
 BoundaryNodeGeometry boundary_geometry(const Mesh& mesh, const std::string& boundary);
@@ -46,8 +53,8 @@ std::vector<Candidate> select_candidates(const Mesh& mesh, const std::vector<Obs
 // they add no unknown. InputError when such a prescribed position penetrates the obstacle.
 void remove_prescribed_candidates(Model& model);
 
-// One row of B and entry of g per candidate, in candidate order: −nᵀ u_i ≤ g_i, u_i in the
-// node's DOF frame, with the prescribed components of u_i moved into g.
+// One row of B and entry of g per candidate, in candidate order: −nᵀ u_i ≤ g_i (n of length
+// dim), u_i in the node's DOF frame, with the prescribed components of u_i moved into g.
 void add_contact_rows(const Model& model, QuadraticProgram& qp);
 
 }  // namespace contactqp::detail

@@ -8,41 +8,79 @@
 
 namespace contactqp::detail {
 
+namespace {
+
+// Per node: the sum of the unit normals of its faces and its tributary length or area.
+using NodeSums = std::map<int, std::pair<Eigen::Vector3d, double>>;
+
+void add_to(NodeSums& per_node, int node, const Eigen::Vector3d& normal, double w) {
+  auto& entry = per_node.try_emplace(node, Eigen::Vector3d::Zero(), 0.0).first->second;
+  entry.first += normal;
+  entry.second += w;
+}
+
+// A 2D edge: ∫ N_i |x'(t)| dt by three Gauss points (exact for the polynomial part on a
+// straight quadratic edge, accurate on a curved one); the normal of the chord a → b.
+void add_edge(const Mesh& mesh, const BoundaryFace& edge, NodeSums& per_node) {
+  const Eigen::Vector3d& a = mesh.nodes[edge.nodes[0]];
+  const Eigen::Vector3d& b = mesh.nodes[edge.nodes[1]];
+  const bool quadratic = edge.n_nodes == 3;
+  double w_a = 0, w_b = 0, w_m = 0;
+  for (int q = 0; q < 3; ++q) {
+    const EdgePoint p = edge_point(kEdgeGaussT[q], a, b, quadratic ? &mesh.nodes[edge.nodes[2]] : nullptr);
+    const double jacobian = p.dx.norm() * kEdgeGaussW[q];
+    w_a += p.N[0] * jacobian;
+    w_b += p.N[1] * jacobian;
+    w_m += p.N[2] * jacobian;
+  }
+  const Eigen::Vector3d tangent = b - a;
+  const Eigen::Vector3d normal = Eigen::Vector3d(tangent.y(), -tangent.x(), 0.0).normalized();  // body on the left
+  add_to(per_node, edge.nodes[0], normal, w_a);
+  add_to(per_node, edge.nodes[1], normal, w_b);
+  if (quadratic) add_to(per_node, edge.nodes[2], normal, w_m);
+}
+
+double triangle_area(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  return 0.5 * (b - a).cross(c - a).norm();
+}
+
+// A 3D face: a third of a linear face's area to each vertex (= ∫ N_i dA). A 6-node face's
+// consistent weights ∫ N_i dA are 0 at its vertices, which divides no force: instead it is
+// split into its four 3-node sub-triangles (at the mid-side nodes) and each gives a third of
+// its area to its three nodes (a vertex A/12, a mid-side A/4 on a flat face).
+void add_face(const Mesh& mesh, const BoundaryFace& face, NodeSums& per_node) {
+  const Eigen::Vector3d normal = face_normal(mesh, face);
+  const auto& x = mesh.nodes;
+  const auto& v = face.nodes;
+  if (face.n_nodes == 3) {
+    const double third = triangle_area(x[v[0]], x[v[1]], x[v[2]]) / 3.0;
+    for (int k = 0; k < 3; ++k) add_to(per_node, v[k], normal, third);
+    return;
+  }
+  const int sub[4][3] = {{v[0], v[3], v[5]}, {v[1], v[4], v[3]}, {v[2], v[5], v[4]}, {v[3], v[4], v[5]}};
+  std::map<int, double> share;
+  for (const auto& t : sub) {
+    const double third = triangle_area(x[t[0]], x[t[1]], x[t[2]]) / 3.0;
+    for (int k = 0; k < 3; ++k) share[t[k]] += third;
+  }
+  for (int k = 0; k < 6; ++k) add_to(per_node, v[k], normal, share[v[k]]);
+}
+
+}  // namespace
+
 BoundaryNodeGeometry boundary_geometry(const Mesh& mesh, const std::string& boundary) {
-  std::map<int, std::pair<Eigen::Vector2d, double>> per_node;  // node -> (normal sum, tributary)
+  NodeSums per_node;  // node -> (normal sum, tributary)
   auto it = mesh.boundaries.find(boundary);
   if (it != mesh.boundaries.end()) {
-    for (const BoundaryEdge& edge : it->second) {
-      const Eigen::Vector2d& a = mesh.nodes[edge.a];
-      const Eigen::Vector2d& b = mesh.nodes[edge.b];
-      // Edge x(t) = N_a a + N_b b (+ N_m m): linear, or quadratic through the mid-side node.
-      // Three Gauss points: exact for the polynomial part of ∫ N_i |x'(t)| dt on a straight
-      // quadratic edge, accurate on a curved one.
-      const bool quadratic = edge.mid >= 0;
-      double w_a = 0, w_b = 0, w_m = 0;
-      for (int q = 0; q < 3; ++q) {
-        const EdgePoint p = edge_point(kEdgeGaussT[q], a, b, quadratic ? &mesh.nodes[edge.mid] : nullptr);
-        const double jacobian = p.dx.norm() * kEdgeGaussW[q];
-        w_a += p.N[0] * jacobian;
-        w_b += p.N[1] * jacobian;
-        w_m += p.N[2] * jacobian;
-      }
-      const Eigen::Vector2d tangent = b - a;
-      const Eigen::Vector2d normal = Eigen::Vector2d(tangent.y(), -tangent.x()).normalized();  // body on the left
-      auto add = [&](int node, double w) {
-        auto& entry = per_node.try_emplace(node, Eigen::Vector2d::Zero(), 0.0).first->second;
-        entry.first += normal;
-        entry.second += w;
-      };
-      add(edge.a, w_a);
-      add(edge.b, w_b);
-      if (quadratic) add(edge.mid, w_m);
+    for (const BoundaryFace& face : it->second) {
+      if (mesh.dim == 2) add_edge(mesh, face, per_node);
+      else add_face(mesh, face, per_node);
     }
   }
   BoundaryNodeGeometry geometry;
   for (const auto& [node, entry] : per_node) {
     geometry.nodes.push_back(node);
-    geometry.normals.push_back(entry.first.norm() > 0 ? Eigen::Vector2d(entry.first.normalized()) : entry.first);
+    geometry.normals.push_back(entry.first.norm() > 0 ? Eigen::Vector3d(entry.first.normalized()) : entry.first);
     geometry.tributary.push_back(entry.second);
   }
   return geometry;
@@ -86,9 +124,12 @@ ContactRowEntries row_of(const Model& model, const Candidate& candidate) {
   ContactRowEntries row;
   row.g = projection.gap;
   // −nᵀu_i with u_i = T a_i (T the node's DOF frame): the coefficients of a_i are −Tᵀn.
-  const Eigen::Vector2d n = dof_frame(model, candidate.node).transpose() * projection.normal;
-  for (int c = 0; c < 2; ++c) {
-    const int dof = 2 * candidate.node + c;
+  const int dim = model.dim;
+  Eigen::VectorXd n = projection.normal.head(dim);
+  if (!model.frame_of_node.empty() && model.frame_of_node[candidate.node] >= 0)
+    n = dof_frame(model, candidate.node).transpose() * n;
+  for (int c = 0; c < dim; ++c) {
+    const int dof = dim * candidate.node + c;
     const int column = model.free_index[dof];
     // A component that is zero but for round-off (a normal along a rotated DOF axis) is zero:
     // the same scene turned by any angle then gives the same rows.
@@ -113,9 +154,8 @@ void remove_prescribed_candidates(Model& model) {
     }
     // Nothing to solve for at this node; its prescribed position must not be inside the obstacle.
     if (row.g < -1e-12 * std::max(1e-300, std::abs(candidate.gap) + model.prescribed.cwiseAbs().maxCoeff()))
-      throw InputError("load", "prescribes node " + std::to_string(candidate.node) + " at (" +
-                                   detail::format_value(model.mesh.nodes[candidate.node].x()) + ", " +
-                                   detail::format_value(model.mesh.nodes[candidate.node].y()) + ") " +
+      throw InputError("load", "prescribes node " + std::to_string(candidate.node) + " at " +
+                                   detail::format_point(model.mesh.nodes[candidate.node], model.dim) + " " +
                                    detail::format_value(-row.g) + " deep into obstacle " +
                                    std::to_string(candidate.obstacle));
   }

@@ -16,8 +16,9 @@ void rotate_to_dof_frames(const Model& model, const int* v, int npe, Eigen::Matr
   bool any = false;
   for (int i = 0; i < npe; ++i) any = any || model.frame_of_node[v[i]] >= 0;
   if (!any) return;
-  Eigen::MatrixXd T = Eigen::MatrixXd::Identity(2 * npe, 2 * npe);
-  for (int i = 0; i < npe; ++i) T.block<2, 2>(2 * i, 2 * i) = dof_frame(model, v[i]);
+  const int dim = model.dim;
+  Eigen::MatrixXd T = Eigen::MatrixXd::Identity(dim * npe, dim * npe);
+  for (int i = 0; i < npe; ++i) T.block(dim * i, dim * i, dim, dim) = dof_frame(model, v[i]);
   Ke = T.transpose() * Ke * T;
 }
 
@@ -54,26 +55,27 @@ QuadraticProgram assemble_qp(Model& model) {
   const ElementLaw law = element_law(model.scene);
   const double thickness = model.scene.body.thickness;
   const int npe = mesh.nodes_per_element();
+  const int dim = mesh.dim;
+  const ElementType type = mesh.type();
 
   QuadraticProgram qp;
   qp.f = Eigen::VectorXd::Zero(model.n_free);
   std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<size_t>(mesh.n_elements()) * 4 * npe * npe);
-  std::vector<Eigen::Vector2d> coordinates(npe);
-  std::vector<int> dofs(2 * npe);
+  triplets.reserve(static_cast<size_t>(mesh.n_elements()) * dim * dim * npe * npe);
+  std::vector<Eigen::Vector3d> coordinates(npe);
+  std::vector<int> dofs(dim * npe);
   for (int e = 0; e < mesh.n_elements(); ++e) {
     const int* v = mesh.element(e);
     for (int i = 0; i < npe; ++i) {
       coordinates[i] = mesh.nodes[v[i]];
-      dofs[2 * i] = 2 * v[i];
-      dofs[2 * i + 1] = 2 * v[i] + 1;
+      for (int c = 0; c < dim; ++c) dofs[dim * i + c] = dim * v[i] + c;
     }
-    Eigen::MatrixXd Ke = element_stiffness(coordinates.data(), mesh.order, law, thickness);
+    Eigen::MatrixXd Ke = element_stiffness(type, coordinates.data(), law, thickness);
     rotate_to_dof_frames(model, v, npe, Ke);
-    for (int i = 0; i < 2 * npe; ++i) {
+    for (int i = 0; i < dim * npe; ++i) {
       const int row = model.free_index[dofs[i]];
       if (row < 0) continue;
-      for (int j = 0; j < 2 * npe; ++j) {
+      for (int j = 0; j < dim * npe; ++j) {
         const int column = model.free_index[dofs[j]];
         if (column >= 0)
           triplets.emplace_back(row, column, Ke(i, j));
@@ -85,9 +87,10 @@ QuadraticProgram assemble_qp(Model& model) {
   // Force loads: f_a = Tᵀ f_x at each node (T its DOF frame); forces at prescribed DOFs go
   // to the reactions.
   for (int node = 0; node < mesh.n_nodes(); ++node) {
-    const Eigen::Vector2d force = dof_frame(model, node).transpose() * model.nodal_force.segment<2>(2 * node);
-    for (int c = 0; c < 2; ++c)
-      if (model.free_index[2 * node + c] >= 0) qp.f[model.free_index[2 * node + c]] += force[c];
+    Eigen::VectorXd force = model.nodal_force.segment(dim * node, dim);
+    if (!model.frame_of_node.empty() && model.frame_of_node[node] >= 0) force = dof_frame(model, node).transpose() * force;
+    for (int c = 0; c < dim; ++c)
+      if (model.free_index[dim * node + c] >= 0) qp.f[model.free_index[dim * node + c]] += force[c];
   }
   qp.K.resize(model.n_free, model.n_free);
   qp.K.setFromTriplets(triplets.begin(), triplets.end());
@@ -103,9 +106,11 @@ Eigen::VectorXd full_displacement(const Model& model, const Eigen::VectorXd& u) 
   Eigen::VectorXd full = model.prescribed;
   for (size_t dof = 0; dof < model.free_index.size(); ++dof)
     if (model.free_index[dof] >= 0) full[dof] = u[model.free_index[dof]];
+  const int dim = model.dim;
   if (!model.frame_of_node.empty())
     for (int node = 0; node < model.mesh.n_nodes(); ++node)
-      if (model.frame_of_node[node] >= 0) full.segment<2>(2 * node) = dof_frame(model, node) * full.segment<2>(2 * node);
+      if (model.frame_of_node[node] >= 0)
+        full.segment(dim * node, dim) = dof_frame(model, node) * full.segment(dim * node, dim);
   return full;
 }
 

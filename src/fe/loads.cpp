@@ -1,10 +1,9 @@
 // Force loads as consistent nodal forces f_i = ∫ N_i t ds (tractions, pressures) and
-// ∫ N_i ρg dA (gravity), times the thickness, on 3-node and 6-node triangles; point forces
-// at a node.
+// ∫ N_i ρg dA (gravity), times the thickness in 2D, on every element type and its faces
+// (edges in 2D, triangles in 3D); point forces at a node.
 #include <Eigen/LU>
 #include <cmath>
 #include <limits>
-#include <set>
 
 #include "../model/model_parts.hpp"
 #include "contactqp/errors.hpp"
@@ -13,24 +12,44 @@
 namespace contactqp::detail {
 namespace {
 
-// ∫ N_i t(x) ds over the edges of a boundary, t given per point by `traction(dx)`, where dx
-// is dx/dt along the edge (body on its left, so the outward normal is (dx_y, −dx_x)/|dx|).
+// ∫ N_i t(x) ds over the edges of a 2D boundary, t given per point by `traction(dx)`, where
+// dx is dx/dt along the edge (body on its left, so the outward normal is (dx_y, −dx_x)/|dx|).
 template <class Traction>
 void add_edge_loads(const Mesh& mesh, const std::string& boundary, double thickness, Traction traction,
                     Eigen::VectorXd& f) {
-  for (const BoundaryEdge& edge : mesh.boundaries.at(boundary)) {
-    const Eigen::Vector2d* mid = edge.mid >= 0 ? &mesh.nodes[edge.mid] : nullptr;
-    const int nodes[] = {edge.a, edge.b, edge.mid};
+  for (const BoundaryFace& edge : mesh.boundaries.at(boundary)) {
+    const bool quadratic = edge.n_nodes == 3;
+    const Eigen::Vector3d* mid = quadratic ? &mesh.nodes[edge.nodes[2]] : nullptr;
     for (int q = 0; q < 3; ++q) {
-      const EdgePoint p = edge_point(kEdgeGaussT[q], mesh.nodes[edge.a], mesh.nodes[edge.b], mid);
-      const Eigen::Vector2d t = traction(p.dx) * (kEdgeGaussW[q] * thickness);
-      for (int k = 0; k < (mid ? 3 : 2); ++k) f.segment<2>(2 * nodes[k]) += p.N[k] * t;
+      const EdgePoint p = edge_point(kEdgeGaussT[q], mesh.nodes[edge.nodes[0]], mesh.nodes[edge.nodes[1]], mid);
+      const Eigen::Vector2d t = traction(Eigen::Vector2d(p.dx.head<2>())) * (kEdgeGaussW[q] * thickness);
+      for (int k = 0; k < edge.n_nodes; ++k) f.segment<2>(2 * edge.nodes[k]) += p.N[k] * t;
+    }
+  }
+}
+
+// ∫ N_i t(x) dA over the triangular faces of a 3D boundary, t given per point by
+// `traction(a)`, where a = ∂x/∂ξ × ∂x/∂η is the outward area vector per reference area.
+template <class Traction>
+void add_face_loads(const Mesh& mesh, const std::string& boundary, Traction traction, Eigen::VectorXd& f) {
+  const int order = mesh.order;
+  const QuadraturePoint* rule = nullptr;
+  const int n_points = triangle_rule(order, rule);
+  for (const BoundaryFace& face : mesh.boundaries.at(boundary)) {
+    Eigen::Matrix<double, 3, Eigen::Dynamic> X(3, face.n_nodes);
+    for (int k = 0; k < face.n_nodes; ++k) X.col(k) = mesh.nodes[face.nodes[k]];
+    for (int q = 0; q < n_points; ++q) {
+      const Eigen::VectorXd N = shape_values(order, rule[q].xi, rule[q].eta);
+      const Eigen::Matrix<double, 2, Eigen::Dynamic> dN = shape_gradients(order, rule[q].xi, rule[q].eta);
+      const Eigen::Vector3d a = (X * dN.row(0).transpose()).cross(X * dN.row(1).transpose());
+      const Eigen::Vector3d t = traction(a) * rule[q].weight;
+      for (int k = 0; k < face.n_nodes; ++k) f.segment<3>(3 * face.nodes[k]) += N[k] * t;
     }
   }
 }
 
 void add_gravity(const Mesh& mesh, const LoadSpec& load, double thickness, Eigen::VectorXd& f) {
-  const Eigen::Vector2d b = load.density * load.vector;  // force per volume
+  const Eigen::Vector3d b = load.density * load.vector;  // force per volume
   std::vector<int> elements;
   if (load.region.empty()) {
     for (int e = 0; e < mesh.n_elements(); ++e) elements.push_back(e);
@@ -38,19 +57,38 @@ void add_gravity(const Mesh& mesh, const LoadSpec& load, double thickness, Eigen
     elements = mesh.regions.at(load.region);
   }
   const int npe = mesh.nodes_per_element();
-  const QuadraturePoint* rule = nullptr;
-  const int n_points = triangle_rule(mesh.order, rule);
+  if (mesh.dim == 2) {
+    const Eigen::Vector2d b2 = b.head<2>();
+    const QuadraturePoint* rule = nullptr;
+    const int n_points = triangle_rule(mesh.order, rule);
+    for (int e : elements) {
+      const int* v = mesh.element(e);
+      Eigen::Matrix<double, 2, Eigen::Dynamic> X(2, npe);
+      for (int i = 0; i < npe; ++i) X.col(i) = mesh.nodes[v[i]].head<2>();
+      // The centroid rule integrates N_i exactly only for 3-node triangles; 6-node ones use
+      // Dunavant's rule, exact for N_i on straight sides (vertices get 0, mid-sides area/3).
+      for (int k = 0; k < n_points; ++k) {
+        const QuadraturePoint& q = rule[k];
+        const double detJ = (shape_gradients(mesh.order, q.xi, q.eta) * X.transpose()).determinant();
+        const Eigen::VectorXd N = shape_values(mesh.order, q.xi, q.eta);
+        for (int i = 0; i < npe; ++i) f.segment<2>(2 * v[i]) += (q.weight * detJ * thickness * N[i]) * b2;
+      }
+    }
+    return;
+  }
+  // Tetrahedra: the centroid rule is exact for ∫ N_i of a straight 4-node one, the 4-point
+  // degree-2 rule for a straight 10-node one (vertices −V/20, mid-edges V/5).
+  const TetrahedronPoint* rule = nullptr;
+  const int n_points = tetrahedron_rule(mesh.order, rule);
   for (int e : elements) {
     const int* v = mesh.element(e);
-    Eigen::Matrix<double, 2, Eigen::Dynamic> X(2, npe);
+    Eigen::Matrix<double, 3, Eigen::Dynamic> X(3, npe);
     for (int i = 0; i < npe; ++i) X.col(i) = mesh.nodes[v[i]];
-    // The centroid rule integrates N_i exactly only for 3-node triangles; 6-node ones use
-    // Dunavant's rule, exact for N_i on straight sides (vertices get 0, mid-sides area/3).
     for (int k = 0; k < n_points; ++k) {
-      const QuadraturePoint& q = rule[k];
-      const double detJ = (shape_gradients(mesh.order, q.xi, q.eta) * X.transpose()).determinant();
-      const Eigen::VectorXd N = shape_values(mesh.order, q.xi, q.eta);
-      for (int i = 0; i < npe; ++i) f.segment<2>(2 * v[i]) += (q.weight * detJ * thickness * N[i]) * b;
+      const TetrahedronPoint& q = rule[k];
+      const double detJ = (tetrahedron_gradients(mesh.order, q.xi, q.eta, q.zeta) * X.transpose()).determinant();
+      const Eigen::VectorXd N = tetrahedron_values(mesh.order, q.xi, q.eta, q.zeta);
+      for (int i = 0; i < npe; ++i) f.segment<3>(3 * v[i]) += (q.weight * detJ * N[i]) * b;
     }
   }
 }
@@ -60,7 +98,7 @@ void add_gravity(const Mesh& mesh, const LoadSpec& load, double thickness, Eigen
 std::vector<int> point_load_nodes(const Scene& scene, const Mesh& mesh, std::vector<std::string>& warnings) {
   std::vector<int> nodes(scene.loads.size(), -1);
   double extent = 0;
-  for (const Eigen::Vector2d& x : mesh.nodes) extent = std::max(extent, (x - mesh.nodes[0]).norm());
+  for (const Eigen::Vector3d& x : mesh.nodes) extent = std::max(extent, (x - mesh.nodes[0]).norm());
   for (size_t l = 0; l < scene.loads.size(); ++l) {
     const LoadSpec& load = scene.loads[l];
     if (load.type != "point") continue;
@@ -77,32 +115,41 @@ std::vector<int> point_load_nodes(const Scene& scene, const Mesh& mesh, std::vec
       }
     }
     if (best > 1e-9 * extent)
-      warnings.push_back(load.path + " acts at node " + std::to_string(nodes[l]) + " at (" +
-                         format_value(mesh.nodes[nodes[l]].x()) + ", " + format_value(mesh.nodes[nodes[l]].y()) +
-                         "), " + format_value(best) + " from the point asked for (the nearest node)");
+      warnings.push_back(load.path + " acts at node " + std::to_string(nodes[l]) + " at " +
+                         format_point(mesh.nodes[nodes[l]], mesh.dim) + ", " + format_value(best) +
+                         " from the point asked for (the nearest node)");
   }
   return nodes;
 }
 
 Eigen::VectorXd nodal_forces(const Scene& scene, const Mesh& mesh, const std::vector<int>& point_nodes) {
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(2 * mesh.n_nodes());
+  const int dim = mesh.dim;
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(dim * mesh.n_nodes());
   const double thickness = scene.body.thickness;
-  std::set<int> on_symmetry_plane;
+  // A point load on a symmetry plane: the modelled part carries its share of the force
+  // (half on one plane, a quarter on the axis where two planes meet).
+  std::vector<int> planes_of_node(mesh.n_nodes(), 0);
   if (scene.body.symmetry)
-    for (int node : boundary_nodes(mesh, "symmetry")) on_symmetry_plane.insert(node);
+    for (const std::string& plane : symmetry_boundaries(dim))
+      for (int node : boundary_nodes(mesh, plane)) ++planes_of_node[node];
   for (size_t l = 0; l < scene.loads.size(); ++l) {
     const LoadSpec& load = scene.loads[l];
     if (load.type == "traction") {
-      add_edge_loads(mesh, load.boundary, thickness, [&](const Eigen::Vector2d& dx) { return Eigen::Vector2d(dx.norm() * load.vector); }, f);
+      if (dim == 2)
+        add_edge_loads(mesh, load.boundary, thickness, [&](const Eigen::Vector2d& dx) { return Eigen::Vector2d(dx.norm() * load.vector.head<2>()); }, f);
+      else
+        add_face_loads(mesh, load.boundary, [&](const Eigen::Vector3d& a) { return Eigen::Vector3d(a.norm() * load.vector); }, f);
     } else if (load.type == "pressure") {
-      // t = −p n_out, and n_out |dx| = (dx_y, −dx_x).
-      add_edge_loads(mesh, load.boundary, thickness, [&](const Eigen::Vector2d& dx) { return Eigen::Vector2d(-load.pressure * Eigen::Vector2d(dx.y(), -dx.x())); }, f);
+      // t = −p n_out; in 2D n_out |dx| = (dx_y, −dx_x), in 3D n_out |a| = a.
+      if (dim == 2)
+        add_edge_loads(mesh, load.boundary, thickness, [&](const Eigen::Vector2d& dx) { return Eigen::Vector2d(-load.pressure * Eigen::Vector2d(dx.y(), -dx.x())); }, f);
+      else
+        add_face_loads(mesh, load.boundary, [&](const Eigen::Vector3d& a) { return Eigen::Vector3d(-load.pressure * a); }, f);
     } else if (load.type == "gravity") {
       add_gravity(mesh, load, thickness, f);
     } else if (load.type == "point") {
-      // On the symmetry plane, the modelled half carries half of the force.
-      const double share = on_symmetry_plane.count(point_nodes[l]) ? 0.5 : 1.0;
-      f.segment<2>(2 * point_nodes[l]) += share * load.vector;
+      const double share = std::pow(0.5, planes_of_node[point_nodes[l]]);
+      f.segment(dim * point_nodes[l], dim) += share * load.vector.head(dim);
     }
   }
   return f;

@@ -1,3 +1,4 @@
+#include <Eigen/Geometry>
 #include <cmath>
 #include <iomanip>
 #include <nlohmann/json.hpp>
@@ -16,7 +17,24 @@ json number(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
 // The phases the README promises are always present (0 when a backend has no such phase).
 const char* const kRequiredPhases[] = {"mesh", "assemble", "factorize", "solve", "total"};
 
+// The first dim components of a vector.
+json vector_json(const Eigen::Vector3d& v, int dim) {
+  json out = json::array();
+  for (int c = 0; c < dim; ++c) out.push_back(number(v[c]));
+  return out;
+}
+
 json hertz_json(const HertzComparison& h) {
+  if (h.dim == 3)
+    return {{"radius", number(h.radius)},
+            {"radius_source", h.radius_source},
+            {"force", number(h.force)},
+            {"contact_radius", number(h.contact_radius)},
+            {"max_pressure", number(h.max_pressure)},
+            {"effective_modulus", number(h.effective_modulus)},
+            {"error_contact_radius", number(h.error_contact_radius)},
+            {"error_max_pressure", number(h.error_max_pressure)},
+            {"error_l2", number(h.error_l2)}};
   return {{"radius", number(h.radius)},
           {"radius_source", h.radius_source},
           {"half_width", number(h.half_width)},
@@ -33,19 +51,36 @@ json profile_json(const std::vector<ContactProfilePoint>& points) {
   return profile;
 }
 
+json boussinesq_json(const PunchComparison& b) {
+  return {{"radius", number(b.radius)},
+          {"approach", number(b.approach)},
+          {"effective_modulus", number(b.effective_modulus)},
+          {"force", number(b.force)},
+          {"error_force", number(b.error_force)},
+          {"shape_error", number(b.shape_error)}};
+}
+
 json obstacles_json(const Model& model, const ContactSummary& contact) {
   json list = json::array();
+  const int dim = model.dim;
   for (const ObstacleContact& o : contact.obstacles) {
-    json entry = {{"type", model.scene.obstacles[o.obstacle].type},
+    json entry = {{"type", model.scene.obstacles[o.obstacle].type()},
                   {"total_force", number(o.total_force)},
                   {"line_load", number(o.line_load)},
-                  {"resultant", {number(o.resultant.x()), number(o.resultant.y())}},
-                  {"half_width", number(o.half_width)},
-                  {"half_width_last_node", number(o.half_width_last_node)},
-                  {"centre", number(o.centre)},
-                  {"max_pressure", number(o.max_pressure)},
-                  {"contact_nodes", o.contact_nodes},
-                  {"profile", profile_json(o.profile)}};
+                  {"resultant", vector_json(o.resultant, dim)}};
+    if (dim == 2) {
+      entry["half_width"] = number(o.half_width);
+      entry["half_width_last_node"] = number(o.half_width_last_node);
+      entry["centre"] = number(o.centre);
+    } else {
+      entry["contact_radius"] = number(o.contact_radius);
+      entry["contact_radius_last_node"] = number(o.contact_radius_last_node);
+      entry["contact_area"] = number(o.contact_area);
+      entry["centre"] = vector_json(o.centre_point, dim);
+    }
+    entry["max_pressure"] = number(o.max_pressure);
+    entry["contact_nodes"] = o.contact_nodes;
+    entry["profile"] = profile_json(o.profile);
     if (const auto hertz = compare_with_hertz(model, o)) entry["hertz"] = hertz_json(*hertz);
     list.push_back(entry);
   }
@@ -54,17 +89,25 @@ json obstacles_json(const Model& model, const ContactSummary& contact) {
 
 json scene_json(const Model& model) {
   const Scene& scene = model.scene;
+  constexpr double kDegrees = 180 / 3.14159265358979323846;
   json out = {{"source", scene.source},
               {"model", to_string(scene.model)},
               {"E", number(scene.material.E)},
               {"nu", number(scene.material.nu)},
               {"shape", scene.body.shape},
-              {"symmetry", scene.body.symmetry},
-              {"thickness", number(scene.body.thickness)},
-              {"rotate_degrees", number(std::atan2(model.rotation(1, 0), model.rotation(0, 0)) * 180 / 3.14159265358979323846)}};
-  if (scene.body.shape == "half_disc") out["radius"] = number(scene.body.radius);
-  if (scene.body.shape == "rectangle") {
+              {"symmetry", scene.body.symmetry}};
+  if (model.dim == 2) {
+    out["thickness"] = number(scene.body.thickness);
+    out["rotate_degrees"] = number(std::atan2(model.rotation(1, 0), model.rotation(0, 0)) * kDegrees);
+  } else {
+    const Eigen::AngleAxisd turn(model.rotation);
+    out["rotate_degrees"] = number(turn.angle() * kDegrees);
+    out["axis"] = vector_json(turn.angle() == 0 ? Eigen::Vector3d::UnitZ() : turn.axis(), 3);
+  }
+  if (scene.body.shape == "half_disc" || scene.body.shape == "hemisphere") out["radius"] = number(scene.body.radius);
+  if (scene.body.shape == "rectangle" || scene.body.shape == "box") {
     out["width"] = number(scene.body.width);
+    if (scene.body.shape == "box") out["depth"] = number(scene.body.depth);
     out["height"] = number(scene.body.height);
   }
   if (scene.body.shape == "mesh") out["file"] = scene.body.file;
@@ -95,6 +138,10 @@ std::string result_json(const RunReport& report) {
   out["nodes"] = model.mesh.n_nodes();
   out["elements"] = model.mesh.n_elements();
   out["element_order"] = model.mesh.order;
+  if (model.dim == 3) {
+    out["dimension"] = 3;
+    out["element_type"] = to_string(model.mesh.type());
+  }
   out["objective"] = number(c.objective);
   out["dual_objective"] = c.dual_available ? number(c.dual_objective) : json(nullptr);
   out["duality_gap"] = c.dual_available ? number(c.duality_gap) : json(nullptr);
@@ -106,21 +153,38 @@ std::string result_json(const RunReport& report) {
                 {"max", number(c.kkt_max())}};
 
   const ContactSummary& contact = report.contact;
-  out["contact"] = {{"total_force", number(contact.total_force)},
-                    {"line_load", number(contact.line_load)},
-                    {"half_width", number(contact.half_width)},
-                    {"half_width_last_node", number(contact.half_width_last_node)},
-                    {"max_pressure", number(contact.max_pressure)},
-                    {"contact_nodes", contact.contact_nodes},
-                    {"candidate_max_gap", number(model.max_gap)},
-                    {"candidate_rule", model.max_gap_rule},
-                    {"penetrating_non_candidates", contact.penetrating_non_candidates},
-                    {"profile", profile_json(contact.profile)},
-                    {"obstacles", obstacles_json(model, contact)}};
+  const int dim = model.dim;
+  if (dim == 2) {
+    out["contact"] = {{"total_force", number(contact.total_force)},
+                      {"line_load", number(contact.line_load)},
+                      {"half_width", number(contact.half_width)},
+                      {"half_width_last_node", number(contact.half_width_last_node)},
+                      {"max_pressure", number(contact.max_pressure)},
+                      {"contact_nodes", contact.contact_nodes},
+                      {"candidate_max_gap", number(model.max_gap)},
+                      {"candidate_rule", model.max_gap_rule},
+                      {"penetrating_non_candidates", contact.penetrating_non_candidates},
+                      {"profile", profile_json(contact.profile)},
+                      {"obstacles", obstacles_json(model, contact)}};
+  } else {
+    // 3D: the profile is [[r, p], ...] by distance from the contact centre.
+    out["contact"] = {{"total_force", number(contact.total_force)},
+                      {"contact_area", number(contact.contact_area)},
+                      {"contact_radius", number(contact.contact_radius)},
+                      {"contact_radius_last_node", number(contact.contact_radius_last_node)},
+                      {"max_pressure", number(contact.max_pressure)},
+                      {"contact_nodes", contact.contact_nodes},
+                      {"candidate_max_gap", number(model.max_gap)},
+                      {"candidate_rule", model.max_gap_rule},
+                      {"penetrating_non_candidates", contact.penetrating_non_candidates},
+                      {"profile", profile_json(contact.profile)},
+                      {"obstacles", obstacles_json(model, contact)}};
+  }
   if (report.hertz) out["hertz"] = hertz_json(*report.hertz);
+  if (report.boussinesq) out["boussinesq"] = boussinesq_json(*report.boussinesq);
   json supports = json::array();
   for (const Reaction& r : report.reactions)
-    supports.push_back({{"load", r.load}, {"boundary", r.boundary}, {"force", {number(r.force.x()), number(r.force.y())}}});
+    supports.push_back({{"load", r.load}, {"boundary", r.boundary}, {"force", vector_json(r.force, dim)}});
   out["reactions"] = supports;
   json solver = {{"tol", number(report.options.tol)}, {"max_iterations", report.options.max_iterations}};
   for (const auto& [name, value] : report.result.diagnostics) solver[name] = number(value);
@@ -155,13 +219,14 @@ std::string result_json(const RunReport& report) {
 std::string profile_csv(const RunReport& report) {
   std::ostringstream out;
   out << std::setprecision(12);
-  out << "s,pressure,force,hertz_pressure,obstacle\n";
   const Model& model = *report.model;
+  // 2D: s along the obstacle surface; 3D: r, the distance from the contact centre.
+  out << (model.dim == 2 ? "s" : "r") << ",pressure,force,hertz_pressure,obstacle\n";
   for (const ObstacleContact& contact : report.contact.obstacles) {
     const auto hertz = compare_with_hertz(model, contact);
     for (const ContactProfilePoint& point : contact.profile) {
       out << point.s << ',' << point.pressure << ',' << point.force << ',';
-      if (hertz) out << hertz_pressure(*hertz, point.s - contact.centre);
+      if (hertz) out << hertz_pressure(*hertz, model.dim == 2 ? point.s - contact.centre : point.s);
       out << ',' << point.obstacle << '\n';
     }
   }

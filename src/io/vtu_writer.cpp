@@ -12,7 +12,17 @@
 namespace contactqp {
 namespace {
 
-constexpr std::uint8_t kVtkTriangle = 5, kVtkQuadraticTriangle = 22;
+constexpr std::uint8_t kVtkTriangle = 5, kVtkQuadraticTriangle = 22, kVtkTetra = 10, kVtkQuadraticTetra = 24;
+
+std::uint8_t vtk_cell_type(ElementType type) {
+  switch (type) {
+    case ElementType::Tri3: return kVtkTriangle;
+    case ElementType::Tri6: return kVtkQuadraticTriangle;
+    case ElementType::Tet4: return kVtkTetra;
+    case ElementType::Tet10: return kVtkQuadraticTetra;  // our node order is VTK's
+  }
+  return kVtkTriangle;
+}
 
 const char* byte_order() {
   const std::uint16_t probe = 1;
@@ -53,13 +63,13 @@ std::string scalars(const std::string& name, const Eigen::VectorXd& values) {
   return data_array("Float64", name, 1, std::vector<double>(values.data(), values.data() + values.size()));
 }
 
-// A 2D field as 3 components (z = 0), as ParaView's vector filters expect.
-std::string vectors(const std::string& name, const Eigen::VectorXd& xy) {
-  std::vector<double> xyz(3 * (xy.size() / 2), 0.0);
-  for (Eigen::Index k = 0; k < xy.size() / 2; ++k) {
-    xyz[3 * k] = xy[2 * k];
-    xyz[3 * k + 1] = xy[2 * k + 1];
-  }
+// A nodal vector field of dim components per node as 3 components (z = 0 in 2D), as
+// ParaView's vector filters expect.
+std::string vectors(const std::string& name, const Eigen::VectorXd& field, int dim) {
+  const Eigen::Index n = field.size() / dim;
+  std::vector<double> xyz(3 * n, 0.0);
+  for (Eigen::Index k = 0; k < n; ++k)
+    for (int c = 0; c < dim; ++c) xyz[3 * k + c] = field[dim * k + c];
   return data_array("Float64", name, 3, xyz);
 }
 
@@ -72,7 +82,9 @@ ContactFields contact_fields(const RunReport& report, const Eigen::VectorXd& dis
   const Model& model = *report.model;
   const QuadraticProgram& qp = *report.qp;
   const int n = model.mesh.n_nodes();
-  ContactFields fields{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(2 * n), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
+  const int dim = model.dim;
+  const double thickness = dim == 2 ? model.scene.body.thickness : 1.0;
+  ContactFields fields{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(dim * n), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
   const Eigen::VectorXd& lambda = report.result.lambda;
   const Eigen::VectorXd slack = qp.g - qp.B * report.result.u;
   std::vector<bool> candidate(n, false);
@@ -80,17 +92,18 @@ ContactFields contact_fields(const RunReport& report, const Eigen::VectorXd& dis
   Eigen::VectorXd gap = Eigen::VectorXd::Constant(n, infinity);
   for (int i = 0; i < qp.n_constraints(); ++i) {
     const Candidate& c = model.candidates[i];
-    const double w = c.tributary * model.scene.body.thickness;
+    const double w = c.tributary * thickness;
     fields.pressure[c.node] += w > 0 ? lambda[i] / w : 0.0;
-    const Eigen::Vector2d normal = detail::project(model.scene.obstacles[c.obstacle], model.mesh.nodes[c.node]).normal;
-    fields.force.segment<2>(2 * c.node) += lambda[i] * normal;
+    const Eigen::Vector3d normal = detail::project(model.scene.obstacles[c.obstacle], model.mesh.nodes[c.node]).normal;
+    fields.force.segment(dim * c.node, dim) += lambda[i] * normal.head(dim);
     gap[c.node] = std::min(gap[c.node], slack[i]);
     candidate[c.node] = true;
   }
   for (int node : boundary_nodes(model.mesh, model.scene.contact.boundary)) {
     fields.mask[node] = 1;
     if (candidate[node]) continue;
-    const Eigen::Vector2d moved = model.mesh.nodes[node] + displacement.segment<2>(2 * node);
+    Eigen::Vector3d moved = model.mesh.nodes[node];
+    moved.head(dim) += displacement.segment(dim * node, dim);
     for (const ObstacleSpec& obstacle : model.scene.obstacles)
       gap[node] = std::min(gap[node], detail::project(obstacle, moved).gap);
   }
@@ -108,14 +121,14 @@ std::string vtu_document(const RunReport& report) {
   const ContactFields contact = contact_fields(report, displacement);
 
   std::vector<double> points(3 * mesh.n_nodes(), 0.0);
-  for (int k = 0; k < mesh.n_nodes(); ++k) {
-    points[3 * k] = mesh.nodes[k].x();
-    points[3 * k + 1] = mesh.nodes[k].y();
-  }
+  for (int k = 0; k < mesh.n_nodes(); ++k)
+    for (int c = 0; c < 3; ++c) points[3 * k + c] = mesh.nodes[k][c];
   const int npe = mesh.nodes_per_element();
   std::vector<std::int64_t> connectivity(mesh.elements.begin(), mesh.elements.end()), offsets(mesh.n_elements());
   for (int e = 0; e < mesh.n_elements(); ++e) offsets[e] = static_cast<std::int64_t>(npe) * (e + 1);
-  const std::vector<std::uint8_t> types(mesh.n_elements(), mesh.order == 1 ? kVtkTriangle : kVtkQuadraticTriangle);
+  const std::vector<std::uint8_t> types(mesh.n_elements(), vtk_cell_type(mesh.type()));
+  const int dim = mesh.dim;
+  const std::string shear_3d = dim == 3 ? scalars("sigma_yz", stress.yz) + scalars("sigma_xz", stress.xz) : std::string();
 
   std::ostringstream out;
   out << "<?xml version=\"1.0\"?>\n"
@@ -124,9 +137,9 @@ std::string vtu_document(const RunReport& report) {
       << "  <UnstructuredGrid>\n"
       << "    <Piece NumberOfPoints=\"" << mesh.n_nodes() << "\" NumberOfCells=\"" << mesh.n_elements() << "\">\n"
       << "      <PointData Scalars=\"von_mises\" Vectors=\"displacement\">\n"
-      << vectors("displacement", displacement) << scalars("sigma_xx", stress.xx) << scalars("sigma_yy", stress.yy)
-      << scalars("sigma_xy", stress.xy) << scalars("sigma_zz", stress.zz) << scalars("von_mises", stress.von_mises)
-      << scalars("contact_pressure", contact.pressure) << vectors("contact_force", contact.force)
+      << vectors("displacement", displacement, dim) << scalars("sigma_xx", stress.xx) << scalars("sigma_yy", stress.yy)
+      << scalars("sigma_xy", stress.xy) << scalars("sigma_zz", stress.zz) << shear_3d << scalars("von_mises", stress.von_mises)
+      << scalars("contact_pressure", contact.pressure) << vectors("contact_force", contact.force, dim)
       << scalars("gap", contact.gap) << scalars("contact_boundary", contact.mask)
       << "      </PointData>\n"
       << "      <Points>\n"

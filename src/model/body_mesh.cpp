@@ -8,7 +8,9 @@
 #include "../contact/contact.hpp"
 #include "../mesh/gmsh_model.hpp"
 #include "../mesh/gmsh_reader.hpp"
+#include "../mesh/box_mesher.hpp"
 #include "../mesh/half_disc_mesher.hpp"
+#include "../mesh/hemisphere_mesher.hpp"
 #include "../mesh/rectangle_mesher.hpp"
 #include "contactqp/errors.hpp"
 #include "model_parts.hpp"
@@ -20,7 +22,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 // A boundary curve x(t), t ∈ [t0, t1], with its outward unit normal.
 struct Curve {
-  std::function<Eigen::Vector2d(double)> point, outward;
+  std::function<Eigen::Vector3d(double)> point, outward;
   double t0 = 0, t1 = 1;
 };
 
@@ -34,7 +36,7 @@ Intervals fine_intervals(const Curve& curve, const std::vector<ObstacleSpec>& ob
   double closest_t = curve.t0, closest_gap = std::numeric_limits<double>::infinity();
   for (int k = 0; k <= samples; ++k) {
     const double t = curve.t0 + (curve.t1 - curve.t0) * k / samples;
-    const Eigen::Vector2d x = curve.point(t), outward = curve.outward(t);
+    const Eigen::Vector3d x = curve.point(t), outward = curve.outward(t);
     bool near = false;
     for (const ObstacleSpec& obstacle : obstacles) {
       const ObstacleProjection p = project(obstacle, x);
@@ -59,13 +61,13 @@ Intervals fine_intervals(const Curve& curve, const std::vector<ObstacleSpec>& ob
   return merged;
 }
 
-void refuse_oversized(double estimate, const BuildOptions& options) {
+void refuse_oversized(double estimate, const BuildOptions& options, const std::string& what = "triangles") {
   // Written so that a NaN estimate is refused too; sizes that underflow give +inf.
   if (!(estimate <= static_cast<double>(options.max_elements)))
     throw InputError("body.mesh", "would have " +
                                       (std::isfinite(estimate) ? "about " + detail::format_value(std::round(estimate))
                                                                : std::string("unboundedly many")) +
-                                      " triangles, more than the limit of " + std::to_string(options.max_elements) +
+                                      " " + what + ", more than the limit of " + std::to_string(options.max_elements) +
                                       "; coarsen body.mesh.size or contact_size, or raise --max-elements");
 }
 
@@ -98,8 +100,8 @@ Mesh mesh_half_disc_body(const Scene& scene, double max_gap, const BuildOptions&
   copy_mesh_spec(body, request);
   // The arc P(φ) = (R sin φ, R − R cos φ); see half_disc_mesher.hpp.
   const double R = body.radius;
-  Curve arc{[R](double phi) { return Eigen::Vector2d(R * std::sin(phi), R - R * std::cos(phi)); },
-            [](double phi) { return Eigen::Vector2d(std::sin(phi), -std::cos(phi)); },
+  Curve arc{[R](double phi) { return Eigen::Vector3d(R * std::sin(phi), R - R * std::cos(phi), 0.0); },
+            [](double phi) { return Eigen::Vector3d(std::sin(phi), -std::cos(phi), 0.0); },
             body.symmetry ? 0.0 : -kPi / 2, kPi / 2};
   request.fine = fine_intervals(arc, scene.obstacles, max_gap, body.mesh.contact_size / R);
   refuse_oversized(estimate_half_disc_triangles(request), options);
@@ -115,13 +117,68 @@ Mesh mesh_rectangle_body(const Scene& scene, double max_gap, const BuildOptions&
   request.fine_side = scene.contact.boundary;
   for (const RectangleSide& side : rectangle_sides(body.width, body.height, body.symmetry)) {
     if (side.name != request.fine_side) continue;
-    const Eigen::Vector2d a = side.a, b = side.b, d = b - a;
-    const Eigen::Vector2d outward = Eigen::Vector2d(d.y(), -d.x()).normalized();
-    Curve line{[a, d](double t) { return Eigen::Vector2d(a + t * d); }, [outward](double) { return outward; }};
+    const Eigen::Vector3d a(side.a.x(), side.a.y(), 0.0), d(side.b.x() - side.a.x(), side.b.y() - side.a.y(), 0.0);
+    const Eigen::Vector3d outward = Eigen::Vector3d(d.y(), -d.x(), 0.0).normalized();
+    Curve line{[a, d](double t) { return Eigen::Vector3d(a + t * d); }, [outward](double) { return outward; }};
     request.fine = fine_intervals(line, scene.obstacles, max_gap, body.mesh.contact_size / d.norm());
   }
   refuse_oversized(estimate_rectangle_triangles(request), options);
   return generate([&] { return mesh_rectangle(request); });
+}
+
+// The radius, around the lowest point of a body's contact face, within which it may touch: the
+// nodes of the contact boundary facing an obstacle within max_gap, found by sampling the
+// surface (a cap of the hemisphere, a disc of the box's bottom). With no such point, the
+// contact_size disc around the point closest to an obstacle.
+double fine_radius(const std::function<Eigen::Vector3d(double, double)>& surface,
+                   const std::function<Eigen::Vector3d(double, double)>& outward, double r_max,
+                   const std::vector<ObstacleSpec>& obstacles, double max_gap, double widen) {
+  const int rings = 400, spokes = 24;
+  double reach = 0;
+  for (int i = 0; i <= rings; ++i) {
+    const double r = r_max * i / rings;
+    for (int k = 0; k < spokes; ++k) {
+      const double angle = 2 * kPi * k / spokes;
+      const Eigen::Vector3d x = surface(r, angle), n = outward(r, angle);
+      for (const ObstacleSpec& obstacle : obstacles) {
+        const ObstacleProjection p = project(obstacle, x);
+        if (n.dot(p.normal) < -1e-9 && p.gap <= max_gap) reach = std::max(reach, r);
+      }
+    }
+  }
+  return std::min(r_max, reach + widen);
+}
+
+Mesh mesh_hemisphere_body(const Scene& scene, double max_gap, const BuildOptions& options) {
+  const BodySpec& body = scene.body;
+  HemisphereMeshRequest request;
+  request.radius = body.radius;
+  copy_mesh_spec(body, request);
+  // The sphere's lower half seen from its lowest point: at horizontal distance r, direction θ.
+  const double R = body.radius;
+  auto surface = [R](double r, double angle) {
+    return Eigen::Vector3d(r * std::cos(angle), r * std::sin(angle), R - std::sqrt(std::max(0.0, R * R - r * r)));
+  };
+  auto outward = [R, surface](double r, double angle) { return Eigen::Vector3d((surface(r, angle) - Eigen::Vector3d(0, 0, R)) / R); };
+  request.fine_radius = fine_radius(surface, outward, R, scene.obstacles, max_gap, body.mesh.contact_size);
+  refuse_oversized(estimate_hemisphere_elements(request), options, "tetrahedra");
+  return generate([&] { return mesh_hemisphere(request); });
+}
+
+Mesh mesh_box_body(const Scene& scene, double max_gap, const BuildOptions& options) {
+  const BodySpec& body = scene.body;
+  BoxMeshRequest request;
+  request.width = body.width;
+  request.depth = body.depth;
+  request.height = body.height;
+  copy_mesh_spec(body, request);
+  // The contact face is the bottom z = 0 (the only one the box's scenes press so far).
+  auto surface = [](double r, double angle) { return Eigen::Vector3d(r * std::cos(angle), r * std::sin(angle), 0.0); };
+  auto outward = [](double, double) { return Eigen::Vector3d(0, 0, -1); };
+  const double r_max = 0.5 * std::hypot(body.width, body.depth);
+  request.fine_radius = fine_radius(surface, outward, r_max, scene.obstacles, max_gap, body.mesh.contact_size);
+  refuse_oversized(estimate_box_elements(request), options, "tetrahedra");
+  return generate([&] { return mesh_box(request); });
 }
 
 }  // namespace
@@ -130,13 +187,21 @@ Mesh mesh_body(const Scene& scene, double max_gap, const BuildOptions& options) 
   Mesh mesh;
   if (scene.body.shape == "half_disc") mesh = mesh_half_disc_body(scene, max_gap, options);
   else if (scene.body.shape == "rectangle") mesh = mesh_rectangle_body(scene, max_gap, options);
+  else if (scene.body.shape == "hemisphere") mesh = mesh_hemisphere_body(scene, max_gap, options);
+  else if (scene.body.shape == "box") mesh = mesh_box_body(scene, max_gap, options);
   else mesh = read_gmsh_file({scene.body.file, scene.body.mesh.order, scene.body.mesh.size_factor});
   if (scene.body.formulation == Formulation::Mixed && mesh.order != 2)
     throw InputError("body.formulation", "= \"mixed\": needs 6-node triangles, and " + scene.body.file +
                                              " holds 3-node ones (mesh it with gmsh -order 2)");
+  if (mesh.dim != scene.dim())
+    throw InputError(scene.body.file, "holds a " + std::to_string(mesh.dim) + "D mesh (" + to_string(mesh.type()) +
+                                          " elements), but \"model\": \"" + to_string(scene.model) + "\" is " +
+                                          std::to_string(scene.dim()) + "D" +
+                                          (mesh.dim == 3 ? "; use \"model\": \"solid\"" : "; use plane_strain or plane_stress"));
   if (mesh.n_elements() > options.max_elements)
-    throw InputError("body.mesh", "has " + std::to_string(mesh.n_elements()) + " triangles, more than the limit of " +
-                                      std::to_string(options.max_elements) + "; raise --max-elements");
+    throw InputError("body.mesh", "has " + std::to_string(mesh.n_elements()) + (mesh.dim == 2 ? " triangles" : " tetrahedra") +
+                                      ", more than the limit of " + std::to_string(options.max_elements) +
+                                      "; raise --max-elements");
   return mesh;
 }
 

@@ -13,7 +13,7 @@ void prescribe(Model& model, int dof, double value, const std::string& field) {
     const double scale = std::max(std::abs(value), std::abs(model.prescribed[dof]));
     if (std::abs(model.prescribed[dof] - value) > 1e-12 * scale)
       throw InputError(field, "= " + format_value(value) + " conflicts with " + format_value(model.prescribed[dof]) +
-                                  " prescribed at node " + std::to_string(dof / 2) + " by another condition");
+                                  " prescribed at node " + std::to_string(dof / model.dim) + " by another condition");
   }
   model.free_index[dof] = -1;
   model.prescribed[dof] = value;
@@ -21,18 +21,22 @@ void prescribe(Model& model, int dof, double value, const std::string& field) {
 
 }  // namespace
 
-void apply_displacement_conditions(Model& model, const Scene& scene, const Eigen::Matrix2d& rotation) {
+void apply_displacement_conditions(Model& model, const Scene& scene, const Eigen::Matrix3d& rotation) {
   const int n_nodes = model.mesh.n_nodes();
-  model.free_index.assign(2 * n_nodes, 0);
-  model.prescribed = Eigen::VectorXd::Zero(2 * n_nodes);
+  const int dim = model.mesh.dim;
+  model.dim = dim;
+  model.free_index.assign(dim * n_nodes, 0);
+  model.prescribed = Eigen::VectorXd::Zero(dim * n_nodes);
   for (const LoadSpec& load : scene.loads) {
     if (load.type != "displacement") continue;
     for (int node : boundary_nodes(model.mesh, load.boundary))
-      for (int c = 0; c < 2; ++c)
-        if (load.value[c]) prescribe(model, 2 * node + c, *load.value[c], load.path + ".value");
+      for (int c = 0; c < dim; ++c)
+        if (load.value[c]) prescribe(model, dim * node + c, *load.value[c], load.path + ".value");
   }
   if (scene.body.symmetry)
-    for (int node : boundary_nodes(model.mesh, "symmetry")) prescribe(model, 2 * node, 0.0, "body.symmetry");
+    for (const std::string& plane : symmetry_boundaries(dim))
+      for (int node : boundary_nodes(model.mesh, plane))
+        prescribe(model, dim * node + symmetry_component(plane), 0.0, "body.symmetry");
   model.n_free = 0;
   for (int& index : model.free_index) index = index == 0 ? model.n_free++ : -1;
 
@@ -40,11 +44,12 @@ void apply_displacement_conditions(Model& model, const Scene& scene, const Eigen
   // carry one get the rotated axes as their DOF frame (a skew boundary condition).
   model.frames.clear();
   model.frame_of_node.clear();
-  if (rotation == Eigen::Matrix2d::Identity()) return;
-  model.frames.push_back(rotation);
+  if (rotation == Eigen::Matrix3d::Identity()) return;
+  model.frames.push_back(rotation.topLeftCorner(dim, dim));
   model.frame_of_node.assign(n_nodes, -1);
   for (int node = 0; node < n_nodes; ++node)
-    if (model.free_index[2 * node] < 0 || model.free_index[2 * node + 1] < 0) model.frame_of_node[node] = 0;
+    for (int c = 0; c < dim; ++c)
+      if (model.free_index[dim * node + c] < 0) model.frame_of_node[node] = 0;
 }
 
 }  // namespace contactqp::detail

@@ -28,28 +28,37 @@ void require_name(const Map& names, const std::string& name, const std::string& 
 void check_mesh_names(const Scene& scene, const Mesh& mesh) {
   if (scene.body.shape != "mesh") return;  // generated shapes were checked with the scene
   const std::string& file = scene.body.file;
+  const bool solid = mesh.dim == 3;
+  const std::string boundary_group = solid ? "physical surface" : "physical curve";
+  const std::string region_group = solid ? "physical volume" : "physical surface";
   for (const LoadSpec& load : scene.loads) {
-    if (!load.boundary.empty()) require_name(mesh.boundaries, load.boundary, load.path + ".boundary", "physical curve", file);
-    if (!load.region.empty()) require_name(mesh.regions, load.region, load.path + ".region", "physical surface", file);
+    if (!load.boundary.empty()) require_name(mesh.boundaries, load.boundary, load.path + ".boundary", boundary_group, file);
+    if (!load.region.empty()) require_name(mesh.regions, load.region, load.path + ".region", region_group, file);
     if (!load.point.empty()) require_name(mesh.points, load.point, load.path + ".point", "physical point", file);
   }
-  require_name(mesh.boundaries, scene.contact.boundary, "contact.boundary", "physical curve", file);
+  require_name(mesh.boundaries, scene.contact.boundary, "contact.boundary", boundary_group, file);
   if (!scene.body.symmetry) return;
-  if (!mesh.boundaries.count("symmetry"))
-    throw InputError("body.symmetry", "= true: " + file + " has no physical curve named \"symmetry\" (the cut x = 0)");
-  // The modelled half is x ≥ 0 with its cut on x = 0.
-  double extent = 0, lowest = 0;
-  for (const Eigen::Vector2d& x : mesh.nodes) {
-    extent = std::max(extent, x.cwiseAbs().maxCoeff());
-    lowest = std::min(lowest, x.x());
+  // The modelled part is x ≥ 0 (and y ≥ 0 in 3D) with its cuts on x = 0 (and y = 0).
+  double extent = 0;
+  for (const Eigen::Vector3d& x : mesh.nodes) extent = std::max(extent, x.cwiseAbs().maxCoeff());
+  for (const std::string& plane : symmetry_boundaries(mesh.dim)) {
+    const int c = symmetry_component(plane);
+    const std::string axis = c == 0 ? "x" : "y";
+    if (!mesh.boundaries.count(plane))
+      throw InputError("body.symmetry", "= true: " + file + " has no " + boundary_group + " named \"" + plane +
+                                            "\" (the cut " + axis + " = 0)");
+    for (int node : boundary_nodes(mesh, plane))
+      if (std::abs(mesh.nodes[node][c]) > 1e-9 * extent)
+        throw InputError("body.symmetry", "= true: the " + boundary_group + " \"" + plane + "\" of " + file +
+                                              " has a node at " + axis + " = " + format_value(mesh.nodes[node][c]) +
+                                              ", not on " + axis + " = 0");
+    double lowest = 0;
+    for (const Eigen::Vector3d& x : mesh.nodes) lowest = std::min(lowest, x[c]);
+    if (lowest < -1e-9 * extent)
+      throw InputError("body.symmetry", "= true: " + file + " reaches " + axis + " = " + format_value(lowest) +
+                                            " < 0; with symmetry the mesh is the part " +
+                                            (solid ? "x ≥ 0, y ≥ 0" : "x ≥ 0"));
   }
-  for (int node : boundary_nodes(mesh, "symmetry"))
-    if (std::abs(mesh.nodes[node].x()) > 1e-9 * extent)
-      throw InputError("body.symmetry", "= true: the physical curve \"symmetry\" of " + file + " has a node at x = " +
-                                            format_value(mesh.nodes[node].x()) + ", not on x = 0");
-  if (lowest < -1e-9 * extent)
-    throw InputError("body.symmetry", "= true: " + file + " reaches x = " + format_value(lowest) +
-                                          " < 0; with symmetry the mesh is the half x ≥ 0");
 }
 
 }  // namespace contactqp::detail

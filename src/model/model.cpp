@@ -35,8 +35,8 @@ void choose_max_gap(const Scene& scene, Model& model) {
   for (const LoadSpec& load : scene.loads) {
     forces = forces || load.is_force();
     if (load.type != "displacement") continue;
-    const double ux = load.value[0].value_or(0.0), uy = load.value[1].value_or(0.0);
-    largest = std::max(largest, std::hypot(ux, uy));
+    const double ux = load.value[0].value_or(0.0), uy = load.value[1].value_or(0.0), uz = load.value[2].value_or(0.0);
+    largest = std::max(largest, uz == 0.0 ? std::hypot(ux, uy) : std::hypot(ux, uy, uz));
   }
   if (largest >= 0 && !forces) {
     model.max_gap = kLoadGapFactor * largest;
@@ -51,7 +51,15 @@ void choose_max_gap(const Scene& scene, Model& model) {
 // Displacement-based triangles lock as ν → 0.5 in plane strain: the element cannot change
 // shape without changing volume, so the body comes out too stiff. Say so, and what helps.
 void warn_near_incompressible(const Scene& scene, const Mesh& mesh, std::vector<std::string>& warnings) {
-  if (scene.model != PlaneModel::PlaneStrain || scene.body.formulation == Formulation::Mixed) return;
+  if (scene.model == ElasticModel::Solid) {
+    // Tetrahedra lock as triangles do; there is no mixed formulation for them yet.
+    if ((mesh.order == 1 && scene.material.nu > kLinearLockingNu) || (mesh.order == 2 && scene.material.nu > kQuadraticLockingNu))
+      warnings.push_back("material.nu = " + detail::format_value(scene.material.nu) + " with " +
+                         (mesh.order == 1 ? "4-node" : "10-node") +
+                         " tetrahedra: they lock as nu -> 0.5 (too stiff: the force for a prescribed push is overstated)");
+    return;
+  }
+  if (scene.model != ElasticModel::PlaneStrain || scene.body.formulation == Formulation::Mixed) return;
   const double nu = scene.material.nu;
   const std::string value = "material.nu = " + detail::format_value(nu);
   if (mesh.order == 1 && nu > kLinearLockingNu)
@@ -63,14 +71,20 @@ void warn_near_incompressible(const Scene& scene, const Mesh& mesh, std::vector<
                                "\"formulation\": \"mixed\" under body removes the locking");
 }
 
-void rotate_mesh(Mesh& mesh, const Eigen::Matrix2d& rotation) {
-  for (Eigen::Vector2d& x : mesh.nodes) x = rotation * x;
+void rotate_mesh(Mesh& mesh, const Eigen::Matrix3d& rotation) {
+  if (mesh.dim == 2) {
+    // A rotation about z: the 2 × 2 block on (x, y), so that z stays exactly 0.
+    const Eigen::Matrix2d R = rotation.topLeftCorner<2, 2>();
+    for (Eigen::Vector3d& x : mesh.nodes) x.head<2>() = R * x.head<2>();
+    return;
+  }
+  for (Eigen::Vector3d& x : mesh.nodes) x = rotation * x;
 }
 
 }  // namespace
 
-Eigen::Matrix2d dof_frame(const Model& model, int node) {
-  if (model.frame_of_node.empty() || model.frame_of_node[node] < 0) return Eigen::Matrix2d::Identity();
+Eigen::MatrixXd dof_frame(const Model& model, int node) {
+  if (model.frame_of_node.empty() || model.frame_of_node[node] < 0) return Eigen::MatrixXd::Identity(model.dim, model.dim);
   return model.frames[model.frame_of_node[node]];
 }
 
@@ -89,7 +103,8 @@ Model build_model(const Scene& scene, const BuildOptions& options) {
   detail::check_mesh_names(scene, model.mesh);
   model.scene = scene;
   model.scene.transform = TransformSpec{};
-  detail::apply_displacement_conditions(model, scene, Eigen::Matrix2d::Identity());
+  model.dim = model.mesh.dim;
+  detail::apply_displacement_conditions(model, scene, Eigen::Matrix3d::Identity());
   detail::check_rigid_motions(model);  // in the scene's own axes, which the message names
   model.candidates = detail::select_candidates(model.mesh, scene.obstacles, scene.contact.boundary, model.max_gap);
   detail::remove_prescribed_candidates(model);

@@ -17,15 +17,15 @@ void check_mesh_names(const Scene& scene, const Mesh& mesh);
 // boundary_conditions.cpp: free_index, prescribed and DOF frames from the displacement loads
 // and the symmetry plane. `rotation` is the scene's transform: with a rotation, prescribed
 // components stay along the scene's own axes.
-void apply_displacement_conditions(Model& model, const Scene& local_scene, const Eigen::Matrix2d& rotation);
+void apply_displacement_conditions(Model& model, const Scene& local_scene, const Eigen::Matrix3d& rotation);
 
-// rigid_motions.cpp: InputError naming the free motions (translation in x, in y, rotation
-// about a point) and what would hold them, unless the prescribed DOFs (in their DOF frames)
+// rigid_motions.cpp: InputError naming the free motions (translations, rotations about a
+// point in 2D or an axis in 3D) and what would hold them, unless the prescribed DOFs (in their DOF frames)
 // hold every connected part of the mesh against rigid motion. Before any assembly: a free
 // body's K is singular.
 void check_rigid_motions(const Model& model);
 
-// ../fe/loads.cpp: consistent nodal forces (2·n_nodes, global x, y, for the body's thickness)
+// ../fe/loads.cpp: consistent nodal forces (dim·n_nodes, global axes, for the body's thickness in 2D)
 // of the force loads of `scene` on `mesh` — both already in the global frame. Point loads act
 // at `point_nodes[l]` for load l (chosen in the scene's own frame, see point_load_nodes).
 Eigen::VectorXd nodal_forces(const Scene& scene, const Mesh& mesh, const std::vector<int>& point_nodes);

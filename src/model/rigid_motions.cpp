@@ -8,7 +8,9 @@
 // extent ℓ, so the three columns are of the same size). A prescribed component c at node i,
 // along the direction d (its DOF frame's column c), holds the motions m with d·m(x_i) ≠ 0:
 // the part is held exactly when the rows [d·t_x, d·t_y, d·r(x_i)] over its prescribed DOFs
-// have rank 3. The null space of those rows is what moves freely.
+// have rank 3. The null space of those rows is what moves freely. In 3D the same with six
+// motions: translations t_x, t_y, t_z and rotations ω × (x − x_c)/ℓ, whose row is
+// [d, ((x − x_c) × d)/ℓ].
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <numeric>
@@ -106,9 +108,99 @@ FreeMotions describe(const Eigen::MatrixXd& null, const Eigen::Vector2d& centre,
   return {rotation_centre(v, Eigen::Vector2d::Zero()), "prescribe a displacement at a second point, away from that centre"};
 }
 
+std::string vector_text(const Eigen::Vector3d& d) {
+  const Eigen::Vector3d unit = d.normalized();
+  for (int c = 0; c < 3; ++c)
+    if (std::abs(std::abs(unit[c]) - 1) < 1e-9) return std::string(1, "xyz"[c]);
+  return "(" + number(unit.x(), 1) + ", " + number(unit.y(), 1) + ", " + number(unit.z(), 1) + ")";
+}
+
+// The free motions of a 3D part, in words, from a basis of the null space (columns (t, ω) of
+// t + ω × (x − x_c)/ℓ): the translations it spans, then the rotations (about the axis through
+// the point that makes the motion a pure rotation where it is one).
+std::string describe_3d(const Eigen::MatrixXd& null, const Eigen::Vector3d& centre, double extent) {
+  std::string text;
+  for (int k = 0; k < null.cols(); ++k) {
+    const Eigen::Vector3d t = null.col(k).head<3>(), w = null.col(k).tail<3>() / extent;
+    std::string motion;
+    if (w.norm() * extent <= 1e-9 * t.norm()) {
+      motion = "translation along " + vector_text(t);
+    } else {
+      // t + w × y = w × (y − p) for p = (w × t)/|w|² when t ⟂ w: a rotation about the axis through x_c + p.
+      const Eigen::Vector3d p = centre + w.cross(t) / w.squaredNorm();
+      motion = "rotation about an axis along " + vector_text(w) + " through (" + number(p.x(), extent) + ", " +
+               number(p.y(), extent) + ", " + number(p.z(), extent) + ")";
+    }
+    text += (text.empty() ? "" : ", ") + motion;
+  }
+  return text;
+}
+
+void check_rigid_motions_2d(const Model& model);
+
+void check_rigid_motions_3d(const Model& model) {
+  const Mesh& mesh = model.mesh;
+  int n_parts = 0;
+  const std::vector<int> part = connected_parts(mesh, n_parts);
+  std::vector<Eigen::Vector3d> centre(n_parts, Eigen::Vector3d::Zero());
+  std::vector<double> volume(n_parts, 0.0), extent(n_parts, 0.0);
+  std::vector<int> first_node(n_parts, -1);
+  for (int node = 0; node < mesh.n_nodes(); ++node)
+    if (first_node[part[node]] < 0) first_node[part[node]] = node;
+  for (int e = 0; e < mesh.n_elements(); ++e) {
+    const int* v = mesh.element(e);
+    const double V = std::abs(element_measure(mesh, e));
+    centre[part[v[0]]] += V * (mesh.nodes[v[0]] + mesh.nodes[v[1]] + mesh.nodes[v[2]] + mesh.nodes[v[3]]) / 4.0;
+    volume[part[v[0]]] += V;
+  }
+  for (int p = 0; p < n_parts; ++p)
+    if (volume[p] > 0) centre[p] /= volume[p];
+  for (int node = 0; node < mesh.n_nodes(); ++node)
+    extent[part[node]] = std::max(extent[part[node]], (mesh.nodes[node] - centre[part[node]]).norm());
+  using Matrix6d = Eigen::Matrix<double, 6, 6>;
+  std::vector<Matrix6d> normal(n_parts, Matrix6d::Zero());
+  for (int node = 0; node < mesh.n_nodes(); ++node) {
+    const int p = part[node];
+    const double l = extent[p] > 0 ? extent[p] : 1.0;
+    const Eigen::Vector3d x = mesh.nodes[node] - centre[p];
+    const Eigen::MatrixXd frame = dof_frame(model, node);
+    for (int c = 0; c < 3; ++c) {
+      if (model.free_index[3 * node + c] >= 0) continue;
+      const Eigen::Vector3d d = frame.col(c);
+      Eigen::Matrix<double, 6, 1> row;
+      row << d, x.cross(d) / l;
+      normal[p] += row * row.transpose();
+    }
+  }
+  for (int p = 0; p < n_parts; ++p) {
+    const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(normal[p]);
+    const Eigen::Matrix<double, 6, 1> values = eigen.eigenvalues();  // ascending
+    int k = 0;
+    while (k < 6 && !(values[k] > kNullTolerance * values[5])) ++k;
+    if (k == 0) continue;
+    const double l = extent[p] > 0 ? extent[p] : 1.0;
+    const std::string which =
+        n_parts == 1 ? "the body"
+                     : "the part of the body with node " + std::to_string(first_node[p]) + " at " +
+                           format_point(mesh.nodes[first_node[p]], 3);
+    throw InputError("load", "leaves " + which + " free to move rigidly (" + describe_3d(eigen.eigenvectors().leftCols(k), centre[p], l) +
+                                 "): no prescribed displacement stops it, so K is singular, and contact alone does not "
+                                 "hold a body here; prescribe displacements that block " +
+                                 (k == 6 ? "every motion (e.g. \"value\": [ux, uy, uz] on a face)" : "these motions") +
+                                 (model.scene.body.symmetry ? "" : ", or model a symmetric body's quarter with \"body.symmetry\": true"));
+  }
+}
+
 }  // namespace
 
 void check_rigid_motions(const Model& model) {
+  if (model.dim == 3) check_rigid_motions_3d(model);
+  else check_rigid_motions_2d(model);
+}
+
+namespace {
+
+void check_rigid_motions_2d(const Model& model) {
   const Mesh& mesh = model.mesh;
   int n_parts = 0;
   const std::vector<int> part = connected_parts(mesh, n_parts);
@@ -121,20 +213,20 @@ void check_rigid_motions(const Model& model) {
   for (int e = 0; e < mesh.n_elements(); ++e) {
     const int* v = mesh.element(e);
     const double a = std::abs(element_area(mesh, e));
-    centre[part[v[0]]] += a * (mesh.nodes[v[0]] + mesh.nodes[v[1]] + mesh.nodes[v[2]]) / 3.0;
+    centre[part[v[0]]] += a * (mesh.nodes[v[0]].head<2>() + mesh.nodes[v[1]].head<2>() + mesh.nodes[v[2]].head<2>()) / 3.0;
     area[part[v[0]]] += a;
   }
   std::vector<double> extent(n_parts, 0.0);
   for (int p = 0; p < n_parts; ++p)
     if (area[p] > 0) centre[p] /= area[p];
   for (int node = 0; node < mesh.n_nodes(); ++node)
-    extent[part[node]] = std::max(extent[part[node]], (mesh.nodes[node] - centre[part[node]]).norm());
+    extent[part[node]] = std::max(extent[part[node]], (mesh.nodes[node].head<2>() - centre[part[node]]).norm());
 
   std::vector<Eigen::Matrix3d> normal(n_parts, Eigen::Matrix3d::Zero());
   for (int node = 0; node < mesh.n_nodes(); ++node) {
     const int p = part[node];
     const double l = extent[p] > 0 ? extent[p] : 1.0;
-    const Eigen::Vector2d x = mesh.nodes[node] - centre[p];
+    const Eigen::Vector2d x = mesh.nodes[node].head<2>() - centre[p];
     const Eigen::Matrix2d frame = dof_frame(model, node);
     for (int c = 0; c < 2; ++c) {
       if (model.free_index[2 * node + c] >= 0) continue;
@@ -162,4 +254,5 @@ void check_rigid_motions(const Model& model) {
   }
 }
 
+}  // namespace
 }  // namespace contactqp::detail

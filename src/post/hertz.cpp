@@ -1,8 +1,12 @@
-// Hertz's contact of two cylinders, or a cylinder and a plane (plane strain or plane stress),
-// ARCHITECTURE.md, with the radius of relative curvature 1/R = 1/R_body + 1/R_obstacle:
-//   b = sqrt(4 P R / (π E*)),  p0 = 2P / (π b),  p(x) = p0 sqrt(1 − x²/b²).
+// Hertz's contact (docs/architecture.md), with the radius of relative curvature
+// 1/R = 1/R_body + 1/R_obstacle:
+//   2D, two cylinders (plane strain or stress):  b = sqrt(4 P R / (π E*)),  p0 = 2P / (π b),
+//                                                p(x) = p0 sqrt(1 − x²/b²);
+//   3D, two spheres:                             a = (3 P R / (4 E*))^(1/3),  p0 = 3P / (2π a²),
+//                                                p(r) = p0 sqrt(1 − r²/a²).
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include <Eigen/SVD>
 
@@ -33,7 +37,7 @@ double interpolated_pressure(const std::vector<ContactProfilePoint>& profile, do
 }
 
 double hertz_pressure(const HertzComparison& hertz, double x) {
-  const double b = hertz.half_width;
+  const double b = hertz.dim == 3 ? hertz.contact_radius : hertz.half_width;
   if (!(b > 0) || std::abs(x) >= b) return 0.0;
   return hertz.max_pressure * std::sqrt(1.0 - (x / b) * (x / b));
 }
@@ -41,11 +45,13 @@ double hertz_pressure(const HertzComparison& hertz, double x) {
 namespace {
 
 // Signed curvature of the body's boundary through the nodes in contact with obstacle o
-// (positive when convex towards the obstacle): an algebraic circle A|x|² + Dx + Ey + F = 0
-// through the initial positions, fitted in centred, scaled coordinates (exact for nodes on a
-// circle, 0 for nodes on a line). nullopt with fewer than four nodes in contact.
+// (positive when convex towards the obstacle): an algebraic circle (2D) or sphere (3D)
+// A|x|² + D·x + F = 0 through the initial positions, fitted in centred, scaled coordinates
+// (exact for nodes on a circle or sphere, 0 for nodes on a line or plane). nullopt with too
+// few nodes in contact (four in 2D, six in 3D).
 std::optional<double> fitted_body_curvature(const Model& model, const ObstacleContact& contact) {
-  std::vector<Eigen::Vector2d> points;
+  const int dim = model.dim;
+  std::vector<Eigen::Vector3d> points;
   const double loaded = 1e-8 * std::max(1e-300, [&] {
     double m = 0;
     for (const auto& p : contact.profile) m = std::max(m, p.force);
@@ -53,25 +59,30 @@ std::optional<double> fitted_body_curvature(const Model& model, const ObstacleCo
   }());
   for (const ContactProfilePoint& p : contact.profile)
     if (p.force > loaded) points.push_back(model.mesh.nodes[p.node]);
-  if (points.size() < 4) return std::nullopt;
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  if (static_cast<int>(points.size()) < (dim == 2 ? 4 : 6)) return std::nullopt;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (const auto& x : points) mean += x;
   mean /= static_cast<double>(points.size());
   double scale = 0;
   for (const auto& x : points) scale = std::max(scale, (x - mean).norm());
-  Eigen::MatrixXd M(points.size(), 4);
+  const int unknowns = dim + 2;
+  Eigen::MatrixXd M(points.size(), unknowns);
   for (size_t k = 0; k < points.size(); ++k) {
-    const Eigen::Vector2d y = (points[k] - mean) / scale;
-    M.row(k) << y.squaredNorm(), y.x(), y.y(), 1.0;
+    const Eigen::Vector3d y = (points[k] - mean) / scale;
+    M(k, 0) = y.squaredNorm();
+    for (int c = 0; c < dim; ++c) M(k, 1 + c) = y[c];
+    M(k, unknowns - 1) = 1.0;
   }
-  const Eigen::Vector4d c = Eigen::JacobiSVD<Eigen::MatrixXd>(M, Eigen::ComputeFullV).matrixV().col(3);
-  const double A = c[0], D = c[1], E = c[2], F = c[3];
-  const double gradient = std::sqrt(std::max(0.0, D * D + E * E - 4 * A * F));  // |∇(A|y|² + Dy + Ey + F)| on the curve
+  const Eigen::VectorXd c = Eigen::JacobiSVD<Eigen::MatrixXd>(M, Eigen::ComputeFullV).matrixV().col(unknowns - 1);
+  const double A = c[0], F = c[unknowns - 1];
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero();
+  for (int k = 0; k < dim; ++k) linear[k] = c[1 + k];
+  const double gradient = std::sqrt(std::max(0.0, linear.squaredNorm() - 4 * A * F));  // |∇(A|y|² + D·y + F)| on the surface
   if (!(gradient > 0)) return std::nullopt;
-  // ∇ at the centroid (y = 0) is (D, E); the body is convex when the side where the form is
+  // ∇ at the centroid (y = 0) is D; the body is convex when the side where the form is
   // negative (inside the circle for A > 0) is away from the obstacle, i.e. ∇ points at it.
-  const Eigen::Vector2d towards_obstacle = -detail::project(model.scene.obstacles[contact.obstacle], mean).normal;
-  const double sign = Eigen::Vector2d(D, E).dot(towards_obstacle) >= 0 ? 1.0 : -1.0;
+  const Eigen::Vector3d towards_obstacle = -detail::project(model.scene.obstacles[contact.obstacle], mean).normal;
+  const double sign = linear.dot(towards_obstacle) >= 0 ? 1.0 : -1.0;
   return sign * 2 * A / gradient / scale;
 }
 
@@ -79,11 +90,14 @@ std::optional<double> fitted_body_curvature(const Model& model, const ObstacleCo
 std::optional<std::pair<double, std::string>> relative_curvature(const Model& model, const ObstacleContact& contact) {
   const Scene& scene = model.scene;
   const ObstacleSpec& obstacle = scene.obstacles[contact.obstacle];
-  if (obstacle.type == "profile") return std::nullopt;
-  const double obstacle_curvature = detail::obstacle_curvature(obstacle);
+  if (obstacle.is<ProfileObstacle>() || obstacle.is<PunchObstacle>()) return std::nullopt;
+  const std::optional<double> curved = detail::obstacle_curvature(obstacle);
+  if (!curved) return std::nullopt;  // a cylinder: the zone is elliptical, not Hertz's circle
+  const double obstacle_curvature = *curved;
   double body_curvature = 0;
   std::string source;
-  if (scene.body.shape == "half_disc" && scene.contact.boundary == "arc") {
+  if ((scene.body.shape == "half_disc" && scene.contact.boundary == "arc") ||
+      (scene.body.shape == "hemisphere" && scene.contact.boundary == "surface")) {
     body_curvature = 1.0 / scene.body.radius;
     source = "body.radius";
   } else if (scene.body.shape == "mesh") {
@@ -95,7 +109,8 @@ std::optional<std::pair<double, std::string>> relative_curvature(const Model& mo
   if (obstacle_curvature > 0) source += source.empty() ? "obstacle.radius" : " and obstacle.radius";
   const double curvature = body_curvature + obstacle_curvature;
   // A flat body on a plane (or a curvature lost in the fit's noise) is not Hertz's problem.
-  if (!(curvature > 0) || curvature * std::max(contact.half_width, 1e-300) < 1e-6) return std::nullopt;
+  const double zone = model.dim == 3 ? contact.contact_radius : contact.half_width;
+  if (!(curvature > 0) || curvature * std::max(zone, 1e-300) < 1e-6) return std::nullopt;
   return std::make_pair(curvature, source);
 }
 
@@ -106,7 +121,46 @@ std::optional<HertzComparison> compare_with_hertz(const Model& model, const Cont
   return compare_with_hertz(model, contact.obstacles[0]);
 }
 
+namespace {
+
+// Two spheres (3D): a, p0 and the L2 error of p(r) by nodal quadrature over the candidates
+// (their tributary areas cover the Hertz disc), against the exact ∫ p_Hertz² dA = π a² p0²/2.
+std::optional<HertzComparison> compare_with_hertz_3d(const Model& model, const ObstacleContact& contact) {
+  const Scene& scene = model.scene;
+  const double P = contact.resultant.norm();
+  if (!(P > 0)) return std::nullopt;
+  const auto curvature = relative_curvature(model, contact);
+  if (!curvature) return std::nullopt;
+  HertzComparison hertz;
+  hertz.dim = 3;
+  const double E = scene.material.E, nu = scene.material.nu, R = 1.0 / curvature->first;
+  hertz.radius = R;
+  hertz.radius_source = curvature->second;
+  hertz.effective_modulus = E / (1 - nu * nu);
+  hertz.force = P;
+  hertz.contact_radius = std::cbrt(3 * P * R / (4 * hertz.effective_modulus));
+  hertz.max_pressure = 3 * P / (2 * kPi * hertz.contact_radius * hertz.contact_radius);
+  hertz.error_contact_radius = (contact.contact_radius - hertz.contact_radius) / hertz.contact_radius;
+  hertz.error_max_pressure = (contact.max_pressure - hertz.max_pressure) / hertz.max_pressure;
+  std::map<int, double> tributary;
+  for (const Candidate& c : model.candidates)
+    if (c.obstacle == contact.obstacle) tributary[c.node] = c.tributary;
+  double error = 0;
+  for (const ContactProfilePoint& point : contact.profile) {
+    const double difference = point.pressure - hertz_pressure(hertz, point.s);
+    error += tributary[point.node] * difference * difference;
+  }
+  const double copies = scene.body.symmetry ? 4.0 : 1.0;
+  const double a = hertz.contact_radius;
+  const double reference = kPi * a * a * hertz.max_pressure * hertz.max_pressure / 2 / copies;
+  hertz.error_l2 = std::sqrt(error / reference);
+  return hertz;
+}
+
+}  // namespace
+
 std::optional<HertzComparison> compare_with_hertz(const Model& model, const ObstacleContact& contact) {
+  if (model.dim == 3) return compare_with_hertz_3d(model, contact);
   const Scene& scene = model.scene;
   // Hertz's P: the resultant pressing the bodies together, per length (on a curved obstacle a
   // little less than Σλ, whose normals fan out).
@@ -120,6 +174,7 @@ std::optional<HertzComparison> compare_with_hertz(const Model& model, const Obst
   hertz.radius = R;
   hertz.radius_source = curvature->second;
   hertz.effective_modulus = scene.model == PlaneModel::PlaneStrain ? E / (1 - nu * nu) : E;
+  hertz.force = P;
   hertz.half_width = std::sqrt(4 * P * R / (kPi * hertz.effective_modulus));
   hertz.max_pressure = 2 * P / (kPi * hertz.half_width);
   hertz.error_half_width = (contact.half_width - hertz.half_width) / hertz.half_width;

@@ -7,22 +7,29 @@
 #include "contactqp/post.hpp"
 
 namespace contactqp {
+namespace {
 
-NodalStress nodal_stresses(const Model& model, const Eigen::VectorXd& displacement) {
+// Σ over elements of (measure × the element's stress at the node) and Σ of the measures:
+// rows σxx, σyy, σxy, σzz, σyz, σxz.
+struct StressSums {
+  Eigen::MatrixXd sum;
+  Eigen::VectorXd weight;
+};
+
+void add_triangles(const Model& model, const Eigen::VectorXd& displacement, StressSums& sums) {
   const Mesh& mesh = model.mesh;
-  const int n = mesh.n_nodes(), npe = mesh.nodes_per_element();
+  const int npe = mesh.nodes_per_element();
   const ElementLaw law = element_law(model.scene);
+  const Eigen::Matrix3d D = law.D;
   const bool mixed = law.formulation == Formulation::Mixed;
-  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(4, n);  // σxx, σyy, σxy, σzz weighted by area
-  Eigen::VectorXd weight = Eigen::VectorXd::Zero(n);
   Eigen::Matrix<double, 2, Eigen::Dynamic> X(2, npe), U(2, npe);
-  std::vector<Eigen::Vector2d> nodes(npe);
+  std::vector<Eigen::Vector3d> nodes(npe);
   Eigen::VectorXd ue(2 * npe);
   for (int e = 0; e < mesh.n_elements(); ++e) {
     const int* v = mesh.element(e);
     for (int i = 0; i < npe; ++i) {
       nodes[i] = mesh.nodes[v[i]];
-      X.col(i) = nodes[i];
+      X.col(i) = nodes[i].head<2>();
       U.col(i) = displacement.segment<2>(2 * v[i]);
       ue.segment<2>(2 * i) = U.col(i);
     }
@@ -35,7 +42,7 @@ NodalStress nodal_stresses(const Model& model, const Eigen::VectorXd& displaceme
       const Eigen::Matrix2d grad = (J.inverse() * dN * U.transpose()).transpose();  // grad(a, b) = d u_a / d x_b
       const Eigen::Vector3d strain(grad(0, 0), grad(1, 1), grad(0, 1) + grad(1, 0));
       Eigen::Vector4d s;
-      s.head<3>() = law.D * strain;
+      s.head<3>() = D * strain;
       if (mixed) {
         // σzz = p + 2μ(εzz − tr ε/3) with εzz = 0 in plane strain.
         s[0] += pressure;
@@ -44,25 +51,62 @@ NodalStress nodal_stresses(const Model& model, const Eigen::VectorXd& displaceme
       } else {
         s[3] = law.model == PlaneModel::PlaneStrain ? law.nu * (s[0] + s[1]) : 0.0;
       }
-      sum.col(v[i]) += area * s;
-      weight[v[i]] += area;
+      sums.sum.col(v[i]).head<4>() += area * s;
+      sums.weight[v[i]] += area;
     }
   }
+}
+
+void add_tetrahedra(const Model& model, const Eigen::VectorXd& displacement, StressSums& sums) {
+  const Mesh& mesh = model.mesh;
+  const int npe = mesh.nodes_per_element();
+  const Eigen::Matrix<double, 6, 6> D = element_law(model.scene).D;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> X(3, npe), U(3, npe);
+  for (int e = 0; e < mesh.n_elements(); ++e) {
+    const int* v = mesh.element(e);
+    for (int i = 0; i < npe; ++i) {
+      X.col(i) = mesh.nodes[v[i]];
+      U.col(i) = displacement.segment<3>(3 * v[i]);
+    }
+    const double volume = std::abs(element_measure(mesh, e));
+    for (int i = 0; i < npe; ++i) {
+      const Eigen::Vector3d at = detail::reference_tetrahedron_node(i);
+      const Eigen::Matrix<double, 3, Eigen::Dynamic> dN = detail::tetrahedron_gradients(mesh.order, at.x(), at.y(), at.z());
+      const Eigen::Matrix3d J = dN * X.transpose();
+      const Eigen::Matrix3d grad = (J.inverse() * dN * U.transpose()).transpose();  // grad(a, b) = d u_a / d x_b
+      Eigen::Matrix<double, 6, 1> strain;
+      strain << grad(0, 0), grad(1, 1), grad(2, 2), grad(1, 2) + grad(2, 1), grad(0, 2) + grad(2, 0), grad(0, 1) + grad(1, 0);
+      const Eigen::Matrix<double, 6, 1> s = D * strain;  // xx, yy, zz, yz, xz, xy
+      Eigen::Matrix<double, 6, 1> stored;
+      stored << s[0], s[1], s[5], s[2], s[3], s[4];  // rows xx, yy, xy, zz, yz, xz
+      sums.sum.col(v[i]) += volume * stored;
+      sums.weight[v[i]] += volume;
+    }
+  }
+}
+
+}  // namespace
+
+NodalStress nodal_stresses(const Model& model, const Eigen::VectorXd& displacement) {
+  const int n = model.mesh.n_nodes();
+  StressSums sums{Eigen::MatrixXd::Zero(6, n), Eigen::VectorXd::Zero(n)};
+  if (model.dim == 2) add_triangles(model, displacement, sums);
+  else add_tetrahedra(model, displacement, sums);
   NodalStress stress;
-  stress.xx.resize(n);
-  stress.yy.resize(n);
-  stress.xy.resize(n);
-  stress.zz.resize(n);
-  stress.von_mises.resize(n);
+  for (Eigen::VectorXd* c : {&stress.xx, &stress.yy, &stress.xy, &stress.zz, &stress.yz, &stress.xz, &stress.von_mises})
+    c->resize(n);
   for (int k = 0; k < n; ++k) {
-    const Eigen::Vector4d s = weight[k] > 0 ? Eigen::Vector4d(sum.col(k) / weight[k]) : Eigen::Vector4d::Zero();
-    const double zz = s[3];
-    stress.xx[k] = s[0];
-    stress.yy[k] = s[1];
-    stress.xy[k] = s[2];
+    const Eigen::Matrix<double, 6, 1> s =
+        sums.weight[k] > 0 ? Eigen::Matrix<double, 6, 1>(sums.sum.col(k) / sums.weight[k]) : Eigen::Matrix<double, 6, 1>::Zero();
+    const double xx = s[0], yy = s[1], xy = s[2], zz = s[3], yz = s[4], xz = s[5];
+    stress.xx[k] = xx;
+    stress.yy[k] = yy;
+    stress.xy[k] = xy;
     stress.zz[k] = zz;
-    stress.von_mises[k] = std::sqrt(0.5 * ((s[0] - s[1]) * (s[0] - s[1]) + (s[1] - zz) * (s[1] - zz) + (zz - s[0]) * (zz - s[0])) +
-                                    3 * s[2] * s[2]);
+    stress.yz[k] = yz;
+    stress.xz[k] = xz;
+    const double shear = model.dim == 2 ? 3 * xy * xy : 3 * (xy * xy + yz * yz + xz * xz);
+    stress.von_mises[k] = std::sqrt(0.5 * ((xx - yy) * (xx - yy) + (yy - zz) * (yy - zz) + (zz - xx) * (zz - xx)) + shear);
   }
   return stress;
 }

@@ -9,7 +9,8 @@
 namespace contactqp::detail {
 namespace {
 
-const std::vector<std::string> kShapes = {"half_disc", "rectangle", "mesh"};
+const std::vector<std::string> kShapes2d = {"half_disc", "rectangle", "mesh"};
+const std::vector<std::string> kShapes3d = {"hemisphere", "box", "mesh"};
 const std::vector<std::string> kFormulations = {"displacement", "mixed"};
 
 // The element order the mixed formulation needs: 6-node triangles (P2–P0 is inf-sup stable;
@@ -95,17 +96,27 @@ void read_mesh_file(JsonObject& body, BodySpec& spec, const std::string& source)
 
 }  // namespace
 
-BodySpec read_body(JsonObject body, const std::string& source) {
+BodySpec read_body(JsonObject body, const std::string& source, int dim) {
   BodySpec spec;
   spec.shape = body.string("shape");
-  if (std::find(kShapes.begin(), kShapes.end(), spec.shape) == kShapes.end())
-    unknown_choice(body.path_of("shape"), spec.shape, "shape", kShapes);
-  if (spec.shape == "half_disc") {
+  const std::vector<std::string>& shapes = dim == 2 ? kShapes2d : kShapes3d;
+  if (std::find(shapes.begin(), shapes.end(), spec.shape) == shapes.end()) {
+    const std::vector<std::string>& other = dim == 2 ? kShapes3d : kShapes2d;
+    if (std::find(other.begin(), other.end(), spec.shape) != other.end())
+      throw InputError(body.path_of("shape"), "= \"" + spec.shape + "\": a " + (dim == 2 ? "3D" : "2D") + " shape, and the scene's model is " +
+                                                  (dim == 2 ? "2D (use \"model\": \"solid\")" : "solid (3D)") + "; valid: " + join(shapes));
+    unknown_choice(body.path_of("shape"), spec.shape, "shape", shapes);
+  }
+  if (spec.shape == "half_disc" || spec.shape == "hemisphere") {
     spec.radius = body.number("radius");
     require(spec.radius > 0, body.path_of("radius"), spec.radius, "must be positive");
-  } else if (spec.shape == "rectangle") {
+  } else if (spec.shape == "rectangle" || spec.shape == "box") {
     spec.width = body.number("width");
     require(spec.width > 0, body.path_of("width"), spec.width, "must be positive");
+    if (spec.shape == "box") {
+      spec.depth = body.number("depth");
+      require(spec.depth > 0, body.path_of("depth"), spec.depth, "must be positive");
+    }
     spec.height = body.number("height");
     require(spec.height > 0, body.path_of("height"), spec.height, "must be positive");
   }
@@ -114,7 +125,7 @@ BodySpec read_body(JsonObject body, const std::string& source) {
     if (*formulation == "mixed") spec.formulation = Formulation::Mixed;
     else if (*formulation != "displacement") unknown_choice(body.path_of("formulation"), *formulation, "formulation", kFormulations);
   }
-  if (auto thickness = body.optional_number("thickness")) {
+  if (auto thickness = dim == 2 ? body.optional_number("thickness") : std::nullopt) {  // 3D: no thickness
     spec.thickness = *thickness;
     require(spec.thickness > 0, body.path_of("thickness"), spec.thickness, "must be positive");
   }
@@ -122,10 +133,11 @@ BodySpec read_body(JsonObject body, const std::string& source) {
     read_mesh_file(body, spec, source);
   } else {
     spec.mesh = read_generated_mesh(body.object("mesh"), spec.formulation);
-    const double extent = spec.shape == "half_disc" ? spec.radius : std::min(spec.width, spec.height);
+    const bool round = spec.shape == "half_disc" || spec.shape == "hemisphere";
+    const double extent = round ? spec.radius
+                                : std::min(spec.width, spec.shape == "box" ? std::min(spec.depth, spec.height) : spec.height);
     require(spec.mesh.contact_size <= extent, body.path_of("mesh.contact_size"), spec.mesh.contact_size,
-            "must not exceed the body's " + std::string(spec.shape == "half_disc" ? "radius" : "smaller side") +
-                " = " + format_value(extent));
+            "must not exceed the body's " + std::string(round ? "radius" : spec.shape == "box" ? "smallest side" : "smaller side") + " = " + format_value(extent));
   }
   body.finish();
   return spec;

@@ -84,7 +84,16 @@ std::string JsonObject::path_of(const std::string& key) const {
 }
 
 const nlohmann::json& JsonObject::required(const std::string& key) {
-  if (!has(key)) throw InputError(path_of(key), "is missing: it is required");
+  if (!has(key)) {
+    // A misspelt key is the likelier cause than a forgotten one: name the unknown key that is
+    // closest to the missing one ("materail" for "material") before saying it is missing.
+    for (const auto& item : json_.items()) {
+      if (read_.count(item.key()) || known_.count(item.key())) continue;
+      if (nearest(item.key(), {key}) == key)
+        throw InputError(path_of(item.key()), "is not a valid key; did you mean \"" + path_of(key) + "\"?");
+    }
+    throw InputError(path_of(key), "is missing: it is required");
+  }
   read_.insert(key);
   return json_.at(key);
 }

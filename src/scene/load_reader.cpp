@@ -10,34 +10,40 @@ namespace {
 
 const std::vector<std::string> kLoadTypes = {"displacement", "traction", "pressure", "gravity", "point"};
 
-void read_displacement(JsonObject& load, LoadSpec& spec) {
+void read_displacement(JsonObject& load, LoadSpec& spec, int dim) {
   const nlohmann::json& value = load.value("value");
   const std::string path = load.path_of("value");
-  if (!value.is_array() || value.size() != 2)
-    throw InputError(path, "= " + describe(value) + ": must be [ux, uy], a component null when free");
-  for (int c = 0; c < 2; ++c)
-    if (!value[c].is_null()) spec.value[c] = as_number(value[c], path + "[" + std::to_string(c) + "]");
-  if (!spec.value[0] && !spec.value[1]) throw InputError(path, "= [null, null]: prescribe at least one component");
+  if (!value.is_array() || static_cast<int>(value.size()) != dim)
+    throw InputError(path, "= " + describe(value) + (dim == 2 ? ": must be [ux, uy], a component null when free"
+                                                              : ": must be [ux, uy, uz], a component null when free"));
+  bool any = false;
+  for (int c = 0; c < dim; ++c)
+    if (!value[c].is_null()) {
+      spec.value[c] = as_number(value[c], path + "[" + std::to_string(c) + "]");
+      any = true;
+    }
+  if (!any) throw InputError(path, std::string(dim == 2 ? "= [null, null]" : "= [null, null, null]") + ": prescribe at least one component");
 }
 
-void read_point(JsonObject& load, LoadSpec& spec, const BodySpec& body) {
-  spec.vector = read_vector(load.value("value"), load.path_of("value"));
+void read_point(JsonObject& load, LoadSpec& spec, const BodySpec& body, int dim) {
+  spec.vector = read_vector(load.value("value"), load.path_of("value"), dim);
   const bool has_at = load.has("at"), has_point = load.has("point");
   if (has_at == has_point)
-    throw InputError(load.path(), std::string(has_at ? "has both" : "needs one of") +
-                                    " \"at\": [x, y] (the nearest node takes the force) and \"point\": a physical point's name");
-  if (has_at) spec.at = read_vector(load.value("at"), load.path_of("at"));
+    throw InputError(load.path(), std::string(has_at ? "has both" : "needs one of") + " \"at\": " +
+                                    (dim == 2 ? "[x, y]" : "[x, y, z]") +
+                                    " (the nearest node takes the force) and \"point\": a physical point's name");
+  if (has_at) spec.at = read_vector(load.value("at"), load.path_of("at"), dim);
   if (has_point) {
     spec.point = load.string("point");
     if (body.shape != "mesh")
       throw InputError(load.path_of("point"), "= \"" + spec.point + "\": a " + body.shape +
-                                                  " has no named points; give \"at\": [x, y] instead");
+                                                  " has no named points; give \"at\": " + (dim == 2 ? "[x, y]" : "[x, y, z]") + " instead");
   }
 }
 
 }  // namespace
 
-LoadSpec read_load(JsonObject load, const BodySpec& body) {
+LoadSpec read_load(JsonObject load, const BodySpec& body, int dim) {
   LoadSpec spec;
   spec.path = load.path();
   spec.type = load.string("type");
@@ -48,15 +54,15 @@ LoadSpec read_load(JsonObject load, const BodySpec& body) {
     require_boundary(spec.boundary, body, load.path_of("boundary"));
   }
   if (spec.type == "displacement") {
-    read_displacement(load, spec);
+    read_displacement(load, spec, dim);
   } else if (spec.type == "traction") {
-    spec.vector = read_vector(load.value("value"), load.path_of("value"));
+    spec.vector = read_vector(load.value("value"), load.path_of("value"), dim);
   } else if (spec.type == "pressure") {
     spec.pressure = load.number("value");
   } else if (spec.type == "gravity") {
     spec.density = load.number("density");
     require(spec.density > 0, load.path_of("density"), spec.density, "must be positive");
-    spec.vector = read_vector(load.value("g"), load.path_of("g"));
+    spec.vector = read_vector(load.value("g"), load.path_of("g"), dim);
     if (auto region = load.optional_string("region")) {
       spec.region = *region;
       if (body.shape != "mesh")
@@ -64,7 +70,7 @@ LoadSpec read_load(JsonObject load, const BodySpec& body) {
                                                      " has no named regions; leave \"region\" out for the whole body");
     }
   } else {
-    read_point(load, spec, body);
+    read_point(load, spec, body, dim);
   }
   load.finish();
   return spec;

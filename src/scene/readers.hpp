@@ -12,8 +12,11 @@
 
 namespace contactqp::detail {
 
-// [x, y] as a vector, or InputError naming `path`.
-Eigen::Vector2d read_vector(const nlohmann::json& value, const std::string& path);
+// [x, y] (dim 2, z = 0) or [x, y, z] (dim 3) as a vector, or InputError naming `path`.
+Eigen::Vector3d read_vector(const nlohmann::json& value, const std::string& path, int dim);
+
+// A direction: read_vector, non-zero, normalised.
+Eigen::Vector3d read_direction(const nlohmann::json& value, const std::string& path, int dim);
 
 // "a, b, c"
 std::string join(const std::vector<std::string>& words);
@@ -24,19 +27,19 @@ std::string join(const std::vector<std::string>& words);
 
 // `body`: the shape and its mesh. `source` is the scene file, against whose directory a mesh
 // file is resolved.
-BodySpec read_body(JsonObject body, const std::string& source);
+BodySpec read_body(JsonObject body, const std::string& source, int dim);
 
 // One entry of `load`; `path` is its field path ("load" or "load[2]").
-LoadSpec read_load(JsonObject load, const BodySpec& body);
+LoadSpec read_load(JsonObject load, const BodySpec& body, int dim);
 
 // One entry of `obstacle`.
-ObstacleSpec read_obstacle(JsonObject obstacle);
+ObstacleSpec read_obstacle(JsonObject obstacle, int dim);
 
 // `transform`.
-TransformSpec read_transform(JsonObject transform);
+TransformSpec read_transform(JsonObject transform, int dim);
 
 // With body.symmetry, InputError unless the rest of the scene is mirror-symmetric about x = 0
-// (in the scene's own frame, before its transform).
+// (and about y = 0 in 3D), in the scene's own frame, before its transform.
 void check_symmetry(const Scene& scene);
 
 // InputError unless `name` is a boundary of a generated shape (mesh bodies are checked once

@@ -27,10 +27,20 @@ ContactSpec read_contact(JsonObject contact, const BodySpec& body);
 
 namespace detail {
 
-Eigen::Vector2d read_vector(const json& value, const std::string& path) {
-  if (!value.is_array() || value.size() != 2)
-    throw InputError(path, "= " + describe(value) + ": must be an array of two numbers [x, y]");
-  return {as_number(value[0], path + "[0]"), as_number(value[1], path + "[1]")};
+Eigen::Vector3d read_vector(const json& value, const std::string& path, int dim) {
+  if (!value.is_array() || static_cast<int>(value.size()) != dim)
+    throw InputError(path, "= " + describe(value) + (dim == 2 ? ": must be an array of two numbers [x, y]"
+                                                              : ": must be an array of three numbers [x, y, z] (\"model\": \"solid\" is 3D)"));
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  for (int c = 0; c < dim; ++c) x[c] = as_number(value[c], path + "[" + std::to_string(c) + "]");
+  return x;
+}
+
+Eigen::Vector3d read_direction(const json& value, const std::string& path, int dim) {
+  const Eigen::Vector3d d = read_vector(value, path, dim);
+  const double length = d.norm();
+  if (!(length > 0)) throw InputError(path, "= " + describe(value) + ": must be a non-zero vector");
+  return d / length;
 }
 
 std::string join(const std::vector<std::string>& words) {
@@ -73,10 +83,12 @@ std::vector<std::pair<const json*, std::string>> one_or_many(const json& value, 
   return items;
 }
 
-std::string default_contact_boundary(const BodySpec& body) {
+std::string default_contact_boundary(const BodySpec& body, int dim) {
   if (body.shape == "half_disc") return "arc";
-  if (body.shape == "rectangle") return "bottom";
-  throw InputError("contact.boundary", "is missing: a mesh body needs the name of the physical curve that may touch");
+  if (body.shape == "rectangle" || body.shape == "box") return "bottom";
+  if (body.shape == "hemisphere") return "surface";
+  throw InputError("contact.boundary", std::string("is missing: a mesh body needs the name of the ") +
+                                           (dim == 2 ? "physical curve" : "physical surface") + " that may touch");
 }
 
 ContactSpec read_contact(JsonObject contact, const BodySpec& body) {
@@ -131,9 +143,23 @@ void read_solver(JsonObject solver, SolveOptions& options) {
 
 }  // namespace
 
-std::string to_string(PlaneModel model) {
-  return model == PlaneModel::PlaneStrain ? "plane_strain" : "plane_stress";
+std::string to_string(ElasticModel model) {
+  switch (model) {
+    case ElasticModel::PlaneStrain: return "plane_strain";
+    case ElasticModel::PlaneStress: return "plane_stress";
+    case ElasticModel::Solid: return "solid";
+  }
+  return "?";
 }
+
+int dimension(ElasticModel model) { return model == ElasticModel::Solid ? 3 : 2; }
+
+std::vector<std::string> symmetry_boundaries(int dim) {
+  if (dim == 2) return {"symmetry"};
+  return {"symmetry_x", "symmetry_y"};
+}
+
+int symmetry_component(const std::string& boundary) { return boundary == "symmetry_y" ? 1 : 0; }
 
 std::string to_string(Formulation formulation) {
   return formulation == Formulation::Mixed ? "mixed" : "displacement";
@@ -143,8 +169,14 @@ std::vector<std::string> boundary_names(const BodySpec& body) {
   std::vector<std::string> names;
   if (body.shape == "half_disc") names = {"arc", "top"};
   else if (body.shape == "rectangle") names = {"bottom", "right", "top", body.symmetry ? "" : "left"};
+  else if (body.shape == "hemisphere") names = {"surface", "top"};
+  else if (body.shape == "box")
+    names = {"bottom", "top", body.symmetry ? "" : "left", "right", body.symmetry ? "" : "front", "back"};
   names.erase(std::remove(names.begin(), names.end(), ""), names.end());
-  if (body.symmetry && body.shape != "mesh") names.push_back("symmetry");
+  if (body.symmetry && body.shape != "mesh") {
+    const bool solid = body.shape == "hemisphere" || body.shape == "box";
+    for (const std::string& plane : symmetry_boundaries(solid ? 3 : 2)) names.push_back(plane);
+  }
   return names;
 }
 
@@ -198,12 +230,14 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   root.optional_string("description");  // free text for the reader of the scene file
 
   if (auto model = root.optional_string("model")) {
-    if (*model == "plane_strain") scene.model = PlaneModel::PlaneStrain;
-    else if (*model == "plane_stress") scene.model = PlaneModel::PlaneStress;
+    if (*model == "plane_strain") scene.model = ElasticModel::PlaneStrain;
+    else if (*model == "plane_stress") scene.model = ElasticModel::PlaneStress;
+    else if (*model == "solid") scene.model = ElasticModel::Solid;
     else {
-      detail::unknown_choice("model", *model, "model", {"plane_strain", "plane_stress"});
+      detail::unknown_choice("model", *model, "model", {"plane_strain", "plane_stress", "solid"});
     }
   }
+  const int dim = scene.dim();
 
   JsonObject material = root.object("material");
   scene.material.E = material.number("E");
@@ -217,17 +251,19 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
               "; use other units");
   material.finish();
 
-  scene.body = detail::read_body(root.object("body"), source);
+  scene.body = detail::read_body(root.object("body"), source, dim);
   // Plane stress has a finite bulk stiffness E/(2(1 − ν)) whatever ν: nothing locks, nothing to mix.
+  if (scene.body.formulation == Formulation::Mixed && scene.model == ElasticModel::Solid)
+    throw InputError("body.formulation", "= \"mixed\": only for \"model\": \"plane_strain\" (6-node triangles; tetrahedra have no mixed formulation)");
   if (scene.body.formulation == Formulation::Mixed && scene.model != PlaneModel::PlaneStrain)
     throw InputError("body.formulation", "= \"mixed\": only for \"model\": \"plane_strain\" (plane stress does not lock as ν → 0.5)");
   for (const auto& [item, path] : one_or_many(root.value("load"), "load"))
-    scene.loads.push_back(detail::read_load(JsonObject(*item, path), scene.body));
+    scene.loads.push_back(detail::read_load(JsonObject(*item, path), scene.body, dim));
   for (const auto& [item, path] : one_or_many(root.value("obstacle"), "obstacle"))
-    scene.obstacles.push_back(detail::read_obstacle(JsonObject(*item, path)));
+    scene.obstacles.push_back(detail::read_obstacle(JsonObject(*item, path), dim));
   if (root.has("contact")) scene.contact = read_contact(root.object("contact"), scene.body);
-  if (scene.contact.boundary.empty()) scene.contact.boundary = default_contact_boundary(scene.body);
-  if (root.has("transform")) scene.transform = detail::read_transform(root.object("transform"));
+  if (scene.contact.boundary.empty()) scene.contact.boundary = default_contact_boundary(scene.body, dim);
+  if (root.has("transform")) scene.transform = detail::read_transform(root.object("transform"), dim);
   if (root.has("solver")) read_solver(root.object("solver"), scene.solver);
   root.finish();
   detail::check_symmetry(scene);

@@ -1,6 +1,7 @@
-// body.symmetry models only x ≥ 0, with u_x = 0 on x = 0. That is right only when the whole
-// scene is mirror-symmetric about x = 0 in its own frame (the transform turns the symmetric
-// scene as a whole, so the check ignores it).
+// body.symmetry models only x ≥ 0 in 2D, the quarter x ≥ 0, y ≥ 0 in 3D, with the normal
+// displacement held on each cut. That is right only when the whole scene is mirror-symmetric
+// about x = 0 (and y = 0) in its own frame (the transform turns the symmetric scene as a
+// whole, so the check ignores it).
 #include <cmath>
 
 #include "contactqp/errors.hpp"
@@ -9,18 +10,37 @@
 namespace contactqp::detail {
 namespace {
 
-[[noreturn]] void broken(const std::string& what) {
-  throw InputError("body.symmetry", "= true: " + what + ", which is not mirror-symmetric about x = 0; set \"symmetry\": false");
+[[noreturn]] void broken(const std::string& what, const std::string& plane) {
+  throw InputError("body.symmetry", "= true: " + what + ", which is not mirror-symmetric about " + plane +
+                                        "; set \"symmetry\": false");
 }
 
-bool mirror_symmetric(const ObstacleSpec& o) {
-  if (o.type == "plane") return std::abs(o.normal.x()) <= 1e-12 && o.point.x() == 0;
-  if (o.type == "circle") return o.center.x() == 0;
+// A point on the mirror plane x_c = 0; a direction within it.
+bool on_plane(const Eigen::Vector3d& point, int c) { return point[c] == 0; }
+bool in_plane(const Eigen::Vector3d& direction, int c) { return std::abs(direction[c]) <= 1e-12; }
+
+std::string mirror_rule(const ObstacleSpec& o, const std::string& axis) {
+  if (o.is<PlaneObstacle>()) return ": its point must have " + axis + " = 0 and its normal no " + axis + " component)";
+  if (o.is<ProfileObstacle>()) return ": its points must mirror each other end to end)";
+  if (o.is<CylinderObstacle>()) return ": its axis must lie in the plane " + axis + " = 0 or cross it at right angles through a point with " + axis + " = 0)";
+  if (o.is<PunchObstacle>()) return ": its center must have " + axis + " = 0 and its axis no " + axis + " component)";
+  return ": its center must have " + axis + " = 0)";
+}
+
+bool mirror_symmetric(const ObstacleSpec& o, int c) {
+  if (const auto* p = o.as<PlaneObstacle>()) return in_plane(p->normal, c) && on_plane(p->point, c);
+  if (const auto* circle = o.as<CircleObstacle>()) return on_plane(circle->center, c);
+  if (const auto* sphere = o.as<SphereObstacle>()) return on_plane(sphere->center, c);
+  if (const auto* punch = o.as<PunchObstacle>()) return on_plane(punch->center, c) && in_plane(punch->axis, c);
+  if (const auto* cylinder = o.as<CylinderObstacle>())
+    return (in_plane(cylinder->axis, c) && on_plane(cylinder->point, c)) ||
+           std::abs(std::abs(cylinder->axis[c]) - 1) <= 1e-12;
   // A profile is its own mirror image walked backwards: point i mirrors point n − 1 − i.
-  const size_t n = o.points.size();
+  const auto& points = o.as<ProfileObstacle>()->points;
+  const size_t n = points.size();
   for (size_t i = 0; i < n; ++i) {
-    const Eigen::Vector2d& p = o.points[i];
-    const Eigen::Vector2d& q = o.points[n - 1 - i];
+    const Eigen::Vector3d& p = points[i];
+    const Eigen::Vector3d& q = points[n - 1 - i];
     const double scale = std::max({1e-300, p.norm(), q.norm()});
     if (std::abs(p.x() + q.x()) > 1e-12 * scale || std::abs(p.y() - q.y()) > 1e-12 * scale) return false;
   }
@@ -31,20 +51,24 @@ bool mirror_symmetric(const ObstacleSpec& o) {
 
 void check_symmetry(const Scene& scene) {
   if (!scene.body.symmetry) return;
-  for (const ObstacleSpec& o : scene.obstacles)
-    if (!mirror_symmetric(o))
-      broken(o.path + " (" + o.type + (o.type == "plane"    ? ": its point must have x = 0 and its normal no x component)"
-                                       : o.type == "circle" ? ": its center must have x = 0)"
-                                                            : ": its points must mirror each other end to end)"));
-  for (const LoadSpec& load : scene.loads) {
-    if (load.type == "displacement" && load.value[0] && *load.value[0] != 0.0)
-      broken(load.path + " has ux = " + format_value(*load.value[0]));
-    if ((load.type == "traction" || load.type == "gravity") && load.vector.x() != 0.0)
-      broken(load.path + " has an x component " + format_value(load.vector.x()));
-    if (load.type == "point" && load.at && load.at->x() < 0)
-      broken(load.path + " acts at x = " + format_value(load.at->x()) + " < 0, outside the modelled half (give x ≥ 0: the mirror image is implied)");
-    if (load.type == "point" && load.at && load.at->x() == 0 && load.vector.x() != 0)
-      broken(load.path + " acts on x = 0 with an x component " + format_value(load.vector.x()));
+  const int dim = scene.dim();
+  for (int c = 0; c < dim - 1; ++c) {  // x = 0, and y = 0 in 3D
+    const std::string axis = c == 0 ? "x" : "y";
+    const std::string plane = axis + " = 0";
+    for (const ObstacleSpec& o : scene.obstacles)
+      if (!mirror_symmetric(o, c)) broken(o.path + " (" + o.type() + mirror_rule(o, axis), plane);
+    for (const LoadSpec& load : scene.loads) {
+      if (load.type == "displacement" && load.value[c] && *load.value[c] != 0.0)
+        broken(load.path + " has u" + axis + " = " + format_value(*load.value[c]), plane);
+      if ((load.type == "traction" || load.type == "gravity") && load.vector[c] != 0.0)
+        broken(load.path + " has an " + axis + " component " + format_value(load.vector[c]), plane);
+      if (load.type == "point" && load.at && (*load.at)[c] < 0)
+        broken(load.path + " acts at " + axis + " = " + format_value((*load.at)[c]) + " < 0, outside the modelled " +
+                   (dim == 2 ? "half" : "quarter") + " (give " + axis + " ≥ 0: the mirror image is implied)",
+               plane);
+      if (load.type == "point" && load.at && (*load.at)[c] == 0 && load.vector[c] != 0)
+        broken(load.path + " acts on " + axis + " = 0 with an " + axis + " component " + format_value(load.vector[c]), plane);
+    }
   }
 }
 

@@ -1,4 +1,5 @@
-// The scene transform: a rigid rotation of everything in the scene about the origin.
+// The scene transform: a rigid rotation of everything in the scene about the origin (about z
+// in 2D, about a given axis in 3D).
 //
 // The body is meshed and its boundary conditions are built in the scene's own (local) frame;
 // build_model then rotates node positions, and rotated() turns the obstacles and the load
@@ -11,20 +12,34 @@
 #include "readers.hpp"
 
 namespace contactqp {
+namespace {
 
-Eigen::Matrix2d TransformSpec::rotation() const {
-  // Exact for multiples of 90°, so that a quarter turn moves no node by round-off.
-  const double turns = rotate_degrees / 90.0;
+// cos and sin of the angle, exact for multiples of 90°, so that a quarter turn moves no node
+// by round-off.
+std::pair<double, double> cos_sin(double degrees) {
+  const double turns = degrees / 90.0;
   if (turns == std::round(turns)) {
     const long quarter = ((static_cast<long>(std::round(turns)) % 4) + 4) % 4;
     const double c[] = {1, 0, -1, 0}, s[] = {0, 1, 0, -1};
-    Eigen::Matrix2d R;
-    R << c[quarter], -s[quarter], s[quarter], c[quarter];
+    return {c[quarter], s[quarter]};
+  }
+  const double angle = degrees * 3.14159265358979323846 / 180.0;
+  return {std::cos(angle), std::sin(angle)};
+}
+
+}  // namespace
+
+Eigen::Matrix3d TransformSpec::rotation() const {
+  const auto [c, s] = cos_sin(rotate_degrees);
+  Eigen::Matrix3d R;
+  if (axis == Eigen::Vector3d::UnitZ()) {
+    R << c, -s, 0, s, c, 0, 0, 0, 1;
     return R;
   }
-  const double angle = rotate_degrees * 3.14159265358979323846 / 180.0;
-  Eigen::Matrix2d R;
-  R << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+  // Rodrigues: R = c I + s [a]× + (1 − c) a aᵀ.
+  Eigen::Matrix3d cross;
+  cross << 0, -axis.z(), axis.y(), axis.z(), 0, -axis.x(), -axis.y(), axis.x(), 0;
+  R = c * Eigen::Matrix3d::Identity() + s * cross + (1 - c) * axis * axis.transpose();
   return R;
 }
 
@@ -32,12 +47,27 @@ Scene rotated(const Scene& scene) {
   Scene out = scene;
   out.transform = TransformSpec{};
   if (scene.transform.is_identity()) return out;
-  const Eigen::Matrix2d R = scene.transform.rotation();
+  const Eigen::Matrix3d R = scene.transform.rotation();
   for (ObstacleSpec& obstacle : out.obstacles) {
-    obstacle.point = R * obstacle.point;
-    obstacle.normal = R * obstacle.normal;
-    obstacle.center = R * obstacle.center;
-    for (Eigen::Vector2d& point : obstacle.points) point = R * point;
+    std::visit(
+        [&](auto& o) {
+          using Kind = std::decay_t<decltype(o)>;
+          if constexpr (std::is_same_v<Kind, PlaneObstacle>) {
+            o.point = R * o.point;
+            o.normal = R * o.normal;
+          } else if constexpr (std::is_same_v<Kind, ProfileObstacle>) {
+            for (Eigen::Vector3d& point : o.points) point = R * point;
+          } else if constexpr (std::is_same_v<Kind, CylinderObstacle>) {
+            o.point = R * o.point;
+            o.axis = R * o.axis;
+          } else if constexpr (std::is_same_v<Kind, PunchObstacle>) {
+            o.center = R * o.center;
+            o.axis = R * o.axis;
+          } else {
+            o.center = R * o.center;  // circle, sphere
+          }
+        },
+        obstacle.shape);
   }
   for (LoadSpec& load : out.loads) {
     load.vector = R * load.vector;  // traction, g, point force; a displacement stays local
@@ -48,9 +78,11 @@ Scene rotated(const Scene& scene) {
 
 namespace detail {
 
-TransformSpec read_transform(JsonObject transform) {
+TransformSpec read_transform(JsonObject transform, int dim) {
   TransformSpec spec;
   spec.rotate_degrees = transform.number("rotate_degrees");
+  // 2D scenes turn about z only: an axis there is an unknown key.
+  if (dim == 3) spec.axis = read_direction(transform.value("axis"), transform.path_of("axis"), 3);
   transform.finish();
   return spec;
 }
