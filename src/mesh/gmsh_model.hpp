@@ -1,5 +1,5 @@
 // What every use of Gmsh shares: one session at a time (Gmsh keeps global state), and the
-// triangles of the current Gmsh model turned into a Mesh.
+// elements of the current Gmsh model turned into a Mesh.
 #pragma once
 
 #include <mutex>
@@ -23,14 +23,18 @@ class GmshSession {
   std::lock_guard<std::mutex> lock_;
 };
 
-// The current Gmsh model's triangles (3-node or 6-node; one order only) as a Mesh with node
-// coordinates times `scale`. Only the nodes used by triangles are kept, numbered compactly.
-// When the model has physical surfaces, the body is their triangles (as Gmsh saves a .msh);
-// otherwise every triangle. Physical curves become named boundaries, physical surfaces
-// named regions, physical points named nodes; an unnamed group is named by its tag ("3").
-// The elements of each surface are turned counter-clockwise as a whole; an element that then
-// is still clockwise, degenerate or (6-node) has a Jacobian changing sign is an error naming
-// its Gmsh element tag. Throws std::runtime_error.
+// The current Gmsh model's body as a Mesh with node coordinates times `scale`: its
+// tetrahedra (4- or 10-node) when a volume holds elements, a dim-3 mesh; otherwise its
+// triangles (3- or 6-node), a dim-2 mesh in the plane z = 0. One order only. Only the nodes
+// used by the body's elements are kept, numbered compactly in element order. When the model
+// has physical groups of the body's dimension (volumes, surfaces), the body is their elements
+// (as Gmsh saves a .msh); otherwise every element of that dimension. Physical groups one
+// dimension down (curves in 2D, surfaces in 3D) become named boundaries (lines or 3-/6-node
+// triangles of the body's order), physical groups of the body's dimension named regions,
+// physical points named nodes; an unnamed group is named by its tag ("3"). The elements of
+// each surface (volume) are turned positive as a whole when most are negative; an element
+// that then is still negative, degenerate or (quadratic) has a Jacobian changing sign is an
+// error naming its Gmsh element tag. Throws std::runtime_error.
 Mesh mesh_from_gmsh(double scale = 1.0);
 
 // Throws std::runtime_error with Gmsh's last error message, if Gmsh logged one in this session.

@@ -21,7 +21,8 @@ bool is_geo(const std::string& path) {
 }
 
 // A .geo file is meshed here, with the scene's order and size factor on top of its own
-// options; a mesh the file itself made ("Mesh 2;") is remade so that those apply too.
+// options; a mesh the file itself made ("Mesh 2;") is remade so that those apply too. A file
+// that defines volumes is meshed in 3D (tetrahedra), any other in 2D.
 void mesh_geometry(const GmshFileRequest& request) {
   gmsh::model::mesh::clear();
   if (request.order > 0) gmsh::option::setNumber("Mesh.ElementOrder", request.order);
@@ -30,7 +31,9 @@ void mesh_geometry(const GmshFileRequest& request) {
     gmsh::option::getNumber("Mesh.MeshSizeFactor", factor);
     gmsh::option::setNumber("Mesh.MeshSizeFactor", factor * request.size_factor);
   }
-  gmsh::model::mesh::generate(2);
+  gmsh::vectorpair volumes;
+  gmsh::model::getEntities(volumes, 3);
+  gmsh::model::mesh::generate(volumes.empty() ? 2 : 3);
   throw_if_gmsh_failed();
 }
 

@@ -8,7 +8,7 @@
 namespace contactqp::detail {
 
 struct GmshFileRequest {
-  std::string path;        // a .msh (4.1 or 2.2, ASCII or binary) or .geo file
+  std::string path;        // a .msh (4.1 or 2.2, ASCII or binary) or .geo file (meshed in 3D when it defines volumes)
   int order = 0;           // .geo: 1 or 2 overrides its Mesh.ElementOrder; 0 keeps it
   double size_factor = 1;  // .geo: multiplies its Mesh.MeshSizeFactor
 };
