@@ -77,7 +77,7 @@ std::string summary_table(const RunReport& report) {
   if (contact.obstacles.size() > 1) {
     for (const ObstacleContact& o : contact.obstacles) {
       out += format("  obstacle %-3d %s: force %.6g, half-width %.6g, max pressure %.6g, %d nodes\n", o.obstacle,
-                    scene.obstacles[o.obstacle].type.c_str(), o.total_force, o.half_width, o.max_pressure, o.contact_nodes);
+                    scene.obstacles[o.obstacle].type().c_str(), o.total_force, o.half_width, o.max_pressure, o.contact_nodes);
       if (const auto hertz = compare_with_hertz(model, o)) out += hertz_line("  hertz     ", *hertz);
     }
   }

@@ -1,5 +1,6 @@
 // Rigid obstacles: the gap of a point along the obstacle normal at its closest point, and (2D)
 // the coordinate of that closest point along the surface.
+#include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
 

@@ -1,6 +1,7 @@
 // Force loads as consistent nodal forces f_i = ∫ N_i t ds (tractions, pressures) and
 // ∫ N_i ρg dA (gravity), times the thickness in 2D, on every element type and its faces
 // (edges in 2D, triangles in 3D); point forces at a node.
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <cmath>
 #include <limits>
@@ -41,7 +42,7 @@ void add_face_loads(const Mesh& mesh, const std::string& boundary, Traction trac
     for (int q = 0; q < n_points; ++q) {
       const Eigen::VectorXd N = shape_values(order, rule[q].xi, rule[q].eta);
       const Eigen::Matrix<double, 2, Eigen::Dynamic> dN = shape_gradients(order, rule[q].xi, rule[q].eta);
-      const Eigen::Vector3d a = (X * dN.row(0).transpose()).cross(X * dN.row(1).transpose());
+      const Eigen::Vector3d a = Eigen::Vector3d(X * dN.row(0).transpose()).cross(Eigen::Vector3d(X * dN.row(1).transpose()));
       const Eigen::Vector3d t = traction(a) * rule[q].weight;
       for (int k = 0; k < face.n_nodes; ++k) f.segment<3>(3 * face.nodes[k]) += N[k] * t;
     }

@@ -1,3 +1,4 @@
+#include <Eigen/Geometry>
 #include "contactqp/mesh.hpp"
 
 #include <algorithm>

@@ -11,6 +11,7 @@
 // have rank 3. The null space of those rows is what moves freely. In 3D the same with six
 // motions: translations t_x, t_y, t_z and rotations ω × (x − x_c)/ℓ, whose row is
 // [d, ((x − x_c) × d)/ℓ].
+#include <Eigen/Geometry>
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <numeric>

@@ -54,7 +54,7 @@ TEST_CASE("patch test: a linear displacement field is reproduced exactly", "[uni
     for (int node : boundary_nodes(model.mesh, name)) on_boundary[node] = true;
   model.n_free = 0;
   for (int node = 0; node < model.mesh.n_nodes(); ++node) {
-    const Eigen::Vector2d u = a + A * model.mesh.nodes[node];
+    const Eigen::Vector2d u = a + A * model.mesh.nodes[node].head<2>();
     for (int c = 0; c < 2; ++c) {
       model.free_index[2 * node + c] = on_boundary[node] ? -1 : model.n_free++;
       model.prescribed[2 * node + c] = on_boundary[node] ? u[c] : 0.0;
@@ -67,7 +67,7 @@ TEST_CASE("patch test: a linear displacement field is reproduced exactly", "[uni
   const Eigen::VectorXd full = full_displacement(model, factor.solve(qp.f));
   double worst = 0;
   for (int node = 0; node < model.mesh.n_nodes(); ++node)
-    worst = std::max(worst, (full.segment<2>(2 * node) - (a + A * model.mesh.nodes[node])).norm());
+    worst = std::max(worst, (full.segment<2>(2 * node) - (a + A * model.mesh.nodes[node].head<2>())).norm());
   CHECK(worst <= 1e-12);
 }
 
@@ -76,13 +76,13 @@ TEST_CASE("the half-disc mesh is graded and its boundaries are where the scene s
   const Mesh& mesh = model.mesh;
   const double R = model.scene.body.radius;
   for (int node : boundary_nodes(mesh, "arc"))
-    CHECK(((mesh.nodes[node] - Eigen::Vector2d(0, R)).norm()) == Approx(R).epsilon(1e-12));
+    CHECK(((mesh.nodes[node].head<2>() - Eigen::Vector2d(0, R)).norm()) == Approx(R).epsilon(1e-12));
   for (int node : boundary_nodes(mesh, "top")) CHECK(mesh.nodes[node].y() == Approx(R).epsilon(1e-14));
   for (int node : boundary_nodes(mesh, "symmetry")) CHECK(mesh.nodes[node].x() == 0.0);
   // Edges along the candidate arc are near contact_size; far from it near size.
   double shortest = 1e300, longest = 0;
-  for (const BoundaryEdge& edge : mesh.boundaries.at("arc")) {
-    const double length = (mesh.nodes[edge.a] - mesh.nodes[edge.b]).norm();
+  for (const BoundaryFace& edge : mesh.boundaries.at("arc")) {
+    const double length = (mesh.nodes[edge.nodes[0]] - mesh.nodes[edge.nodes[1]]).norm();
     shortest = std::min(shortest, length);
     longest = std::max(longest, length);
   }

@@ -46,10 +46,10 @@ TEST_CASE("6-node edges share a uniform traction 1/6, 2/3, 1/6", "[unit][loads]"
                                       {"type": "traction", "boundary": "top", "value": [0.0, 1.0]}])");
   Mesh mesh;
   const Eigen::VectorXd f = forces_of(scene, &mesh);
-  for (const BoundaryEdge& edge : mesh.boundaries.at("top")) {
-    const double length = (mesh.nodes[edge.b] - mesh.nodes[edge.a]).norm();
+  for (const BoundaryFace& edge : mesh.boundaries.at("top")) {
+    const double length = (mesh.nodes[edge.nodes[1]] - mesh.nodes[edge.nodes[0]]).norm();
     // The mid-side node belongs to this edge alone.
-    CHECK(f[2 * edge.mid + 1] == Approx(2.0 / 3.0 * length * 0.5));
+    CHECK(f[2 * edge.nodes[2] + 1] == Approx(2.0 / 3.0 * length * 0.5));
   }
 }
 
@@ -68,7 +68,7 @@ TEST_CASE("a pressure on the curved arc pushes like p · chord", "[unit][loads]"
   // ... and no moment about the centre (0, 1): a pressure on a circle points at its centre.
   double moment = 0;
   for (int k = 0; k < mesh.n_nodes(); ++k) {
-    const Eigen::Vector2d r = mesh.nodes[k] - Eigen::Vector2d(0, 1);
+    const Eigen::Vector2d r = mesh.nodes[k].head<2>() - Eigen::Vector2d(0, 1);
     moment += r.x() * f[2 * k + 1] - r.y() * f[2 * k];
   }
   CHECK(moment == Approx(0.0).margin(1e-12));

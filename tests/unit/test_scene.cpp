@@ -22,7 +22,7 @@ TEST_CASE("the shipped Hertz scenes parse with the documented values", "[unit][s
   CHECK_FALSE(scene.loads[0].value[0].has_value());  // the cut slides freely sideways
   CHECK(*scene.loads[0].value[1] == -0.016);
   REQUIRE(scene.obstacles.size() == 1);
-  CHECK(scene.obstacles[0].normal == Eigen::Vector2d(0, 1));
+  CHECK(scene.obstacles[0].as<PlaneObstacle>()->normal == Eigen::Vector3d(0, 1, 0));
   CHECK(scene.contact.boundary == "arc");
   CHECK(scene.solver.backend == Backend::Uzawa);
   CHECK(scene.solver.tol == 1e-8);
@@ -52,7 +52,7 @@ TEST_CASE("obstacle normals are normalised and sections may be lists", "[unit][s
     "obstacle": [{"type": "plane", "point": [0.0, -0.1], "normal": [0.0, 3.0]}],
     "contact": {"max_gap": 0.2}
   })");
-  CHECK(scene.obstacles[0].normal == Eigen::Vector2d(0, 1));
+  CHECK(scene.obstacles[0].as<PlaneObstacle>()->normal == Eigen::Vector3d(0, 1, 0));
   CHECK(scene.body.mesh.order == 2);
   CHECK_FALSE(scene.body.symmetry);
   CHECK(*scene.contact.max_gap == 0.2);

@@ -20,9 +20,9 @@ double relative(double a, double b) { return std::abs(a - b) / std::abs(b); }
 TEST_CASE("rotation matrices are exact for quarter turns", "[unit][transform]") {
   TransformSpec t;
   t.rotate_degrees = -270;
-  CHECK(t.rotation() == (Eigen::Matrix2d() << 0, -1, 1, 0).finished());
+  CHECK(t.rotation() == (Eigen::Matrix3d() << 0, -1, 0, 1, 0, 0, 0, 0, 1).finished());
   t.rotate_degrees = 30;
-  CHECK((t.rotation() * Eigen::Vector2d::UnitX()).isApprox(Eigen::Vector2d(std::sqrt(3.0) / 2, 0.5)));
+  CHECK((t.rotation() * Eigen::Vector3d::UnitX()).isApprox(Eigen::Vector3d(std::sqrt(3.0) / 2, 0.5, 0)));
 }
 
 TEST_CASE("rotated() turns obstacles and load vectors, not prescribed components", "[unit][transform]") {
@@ -31,8 +31,8 @@ TEST_CASE("rotated() turns obstacles and load vectors, not prescribed components
                {"type": "gravity", "density": 1, "g": [0, -1]}]})"), source_path("scenes/x.json"));
   const Scene turned = rotated(scene);
   CHECK(turned.transform.is_identity());
-  CHECK(turned.obstacles[0].center.isApprox(Eigen::Vector2d(1, 0)));
-  CHECK(turned.loads[1].vector.isApprox(Eigen::Vector2d(1, 0)));
+  CHECK(turned.obstacles[0].as<CircleObstacle>()->center.isApprox(Eigen::Vector3d(1, 0, 0)));
+  CHECK(turned.loads[1].vector.isApprox(Eigen::Vector3d(1, 0, 0)));
   CHECK(*turned.loads[0].value[1] == -0.02);
 }
 
@@ -46,17 +46,17 @@ TEST_CASE("Hertz turned by any angle: the same force, b and p0 within 1e-6", "[u
   CHECK(relative(turned.contact.half_width, base.contact.half_width) < 1e-6);
   CHECK(relative(turned.contact.max_pressure, base.contact.max_pressure) < 1e-6);
   // The whole displacement field is the unrotated one, turned.
-  const Eigen::Matrix2d R = turned.model.rotation;
+  const Eigen::Matrix2d R = turned.model.rotation.topLeftCorner<2, 2>();
   const Eigen::VectorXd u0 = full_displacement(base.model, base.result.u);
   const Eigen::VectorXd u1 = full_displacement(turned.model, turned.result.u);
   double worst = 0;
   for (int k = 0; k < base.model.mesh.n_nodes(); ++k) {
-    CHECK((turned.model.mesh.nodes[k] - R * base.model.mesh.nodes[k]).norm() < 1e-12);
+    CHECK((turned.model.mesh.nodes[k].head<2>() - R * base.model.mesh.nodes[k].head<2>()).norm() < 1e-12);
     worst = std::max(worst, (u1.segment<2>(2 * k) - R * u0.segment<2>(2 * k)).norm());
   }
   CHECK(worst < 1e-6 * u0.cwiseAbs().maxCoeff());
   // The push needed is the same force, along the turned axis.
-  CHECK((turned.reactions[0].force - R * base.reactions[0].force).norm() < 1e-6 * base.reactions[0].force.norm());
+  CHECK((turned.reactions[0].force.head<2>() - R * base.reactions[0].force.head<2>()).norm() < 1e-6 * base.reactions[0].force.norm());
 }
 
 TEST_CASE("a turned circle indenter with gravity and a point load: invariant too", "[unit][transform]") {
