@@ -94,9 +94,10 @@ std::string cell(double x, const char* pattern) {
   return std::isfinite(x) ? format(pattern, x) : std::string("-");
 }
 
-std::string table(const std::vector<Run>& runs, int reference) {
+// The contact zone's size column: the half-width b in 2D, the contact radius a in 3D.
+std::string table(const std::vector<Run>& runs, int reference, int dim) {
   std::string out = format("%-12s %-15s %6s %9s %17s %17s %10s %9s %9s %9s %10s %10s\n", "backend", "status", "iter",
-                           "time [s]", "J", "theta", "gap (rel)", "KKT max", "du (rel)", "dl (rel)", "b", "p0");
+                           "time [s]", "J", "theta", "gap (rel)", "KKT max", "du (rel)", "dl (rel)", dim == 2 ? "b" : "a", "p0");
   for (int i = 0; i < static_cast<int>(runs.size()); ++i) {
     const Run& run = runs[i];
     const Certificate& c = run.certificate;
@@ -107,8 +108,8 @@ std::string table(const std::vector<Run>& runs, int reference) {
                   to_string(run.result.status).c_str(), run.result.iterations, run.result.timings.get("total"),
                   c.objective, cell(theta, "%.10e").c_str(), cell(gap, "%.2e").c_str(), c.kkt_max(),
                   cell(run.rel_diff_u.value_or(kNone), "%.2e").c_str(),
-                  cell(run.rel_diff_lambda.value_or(kNone), "%.2e").c_str(), run.contact.half_width,
-                  run.contact.max_pressure);
+                  cell(run.rel_diff_lambda.value_or(kNone), "%.2e").c_str(),
+                  dim == 2 ? run.contact.half_width : run.contact.contact_radius, run.contact.max_pressure);
   }
   return out;
 }
@@ -184,7 +185,7 @@ int run_compare(const CompareArguments& arguments) {
 
   std::cout << format("contactqp compare  %s  (%d DOFs, %d contact candidates, tol %g)\n", scene.source.c_str(),
                       qp.n_dofs(), qp.n_constraints(), scene.solver.tol);
-  std::cout << table(runs, reference);
+  std::cout << table(runs, reference, model.dim);
   if (reference >= 0)
     std::cout << format("* reference: %s (smallest certified gap among converged runs)\n",
                         to_string(runs[reference].backend).c_str());
@@ -235,7 +236,8 @@ int run_compare(const CompareArguments& arguments) {
                       {"kkt_max", number(c.kkt_max())},
                       {"rel_diff_u", number(run.rel_diff_u)},
                       {"rel_diff_lambda", number(run.rel_diff_lambda)},
-                      {"half_width", number(run.contact.half_width)},
+                      {model.dim == 2 ? "half_width" : "contact_radius",
+                       number(model.dim == 2 ? run.contact.half_width : run.contact.contact_radius)},
                       {"max_pressure", number(run.contact.max_pressure)},
                       {"total_force", number(run.contact.total_force)},
                       {"timings", timings}});

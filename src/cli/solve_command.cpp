@@ -77,7 +77,10 @@ int run_solve(const SolveArguments& arguments) {
   report.timings.add("certify", clock.seconds());
   clock.restart();
   report.contact = summarize_contact(model, qp, report.result.u, report.result.lambda);
-  if (!report.no_contact) report.hertz = compare_with_hertz(model, report.contact);
+  if (!report.no_contact) {
+    report.hertz = compare_with_hertz(model, report.contact);
+    report.boussinesq = compare_with_boussinesq(model, report.contact);
+  }
   report.reactions = reactions(model, qp, report.result.u, report.result.lambda);
   report.timings.add("postprocess", clock.seconds());
 

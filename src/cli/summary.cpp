@@ -23,15 +23,24 @@ namespace {
 std::string body_text(const Model& model) {
   const BodySpec& body = model.scene.body;
   std::string text;
-  if (body.shape == "half_disc") text = format("half_disc R = %g", body.radius);
+  if (body.shape == "half_disc" || body.shape == "hemisphere") text = format("%s R = %g", body.shape.c_str(), body.radius);
   else if (body.shape == "rectangle") text = format("rectangle %g x %g", body.width, body.height);
+  else if (body.shape == "box") text = format("box %g x %g x %g", body.width, body.depth, body.height);
   else text = "mesh " + body.file;
-  const double degrees = std::atan2(model.rotation(1, 0), model.rotation(0, 0)) * 180 / 3.14159265358979323846;
-  if (degrees != 0) text += format(" rotated %g°", degrees);
+  if (model.dim == 2) {
+    const double degrees = std::atan2(model.rotation(1, 0), model.rotation(0, 0)) * 180 / 3.14159265358979323846;
+    if (degrees != 0) text += format(" rotated %g°", degrees);
+  } else if (!model.rotation.isIdentity(0)) {
+    text += " rotated";
+  }
   return text;
 }
 
 std::string hertz_line(const char* label, const HertzComparison& h) {
+  if (h.dim == 3)
+    return format("  %s a = %.6g (error %+.2f%%), p0 = %.6g (error %+.2f%%), L2 pressure error %.2f%% (R = %.6g, %s)\n",
+                  label, h.contact_radius, 100 * h.error_contact_radius, h.max_pressure, 100 * h.error_max_pressure,
+                  100 * h.error_l2, h.radius, h.radius_source.c_str());
   return format("  %s b = %.6g (error %+.2f%%), p0 = %.6g (error %+.2f%%), L2 pressure error %.2f%% (R = %.6g, %s)\n",
                 label, h.half_width, 100 * h.error_half_width, h.max_pressure, 100 * h.error_max_pressure, 100 * h.error_l2,
                 h.radius, h.radius_source.c_str());
@@ -46,11 +55,13 @@ std::string summary_table(const RunReport& report) {
   const Certificate& c = report.certificate;
   std::string out;
   out += format("contactqp  %s\n", scene.source.c_str());
+  const bool solid = model.dim == 3;
   out += format("  model        %s, %s%s, E = %g, nu = %g\n", to_string(scene.model).c_str(), body_text(model).c_str(),
-                scene.body.symmetry ? " (half, symmetric)" : "", scene.material.E, scene.material.nu);
-  out += format("  mesh         %d nodes, %d triangles (order %d), %d DOFs, %d contact candidates (gap <= %g)\n",
-                model.mesh.n_nodes(), model.mesh.n_elements(), model.mesh.order, report.qp->n_dofs(),
-                report.qp->n_constraints(), model.max_gap);
+                scene.body.symmetry ? (solid ? " (quarter, symmetric)" : " (half, symmetric)") : "", scene.material.E,
+                scene.material.nu);
+  out += format("  mesh         %d nodes, %d %s (order %d), %d DOFs, %d contact candidates (gap <= %g)\n",
+                model.mesh.n_nodes(), model.mesh.n_elements(), solid ? "tetrahedra" : "triangles", model.mesh.order,
+                report.qp->n_dofs(), report.qp->n_constraints(), model.max_gap);
   std::string rho;
   auto it = result.diagnostics.find("rho");
   if (it != result.diagnostics.end()) {
@@ -70,19 +81,32 @@ std::string summary_table(const RunReport& report) {
     out += format("               J = %.10g, theta = %.10g, gap = %.2e (relative %.2e)\n", c.objective, c.dual_objective,
                   c.duality_gap, c.relative_gap);
   const ContactSummary& contact = report.contact;
-  out += format("  contact      force P = %.6g, half-width b = %.6g (last node %.6g), max pressure p0 = %.6g, %d nodes\n",
-                contact.total_force, contact.half_width, contact.half_width_last_node, contact.max_pressure,
-                contact.contact_nodes);
+  if (solid)
+    out += format("  contact      force P = %.6g, radius a = %.6g (last node %.6g), area %.6g, max pressure p0 = %.6g, %d nodes\n",
+                  contact.total_force, contact.contact_radius, contact.contact_radius_last_node, contact.contact_area,
+                  contact.max_pressure, contact.contact_nodes);
+  else
+    out += format("  contact      force P = %.6g, half-width b = %.6g (last node %.6g), max pressure p0 = %.6g, %d nodes\n",
+                  contact.total_force, contact.half_width, contact.half_width_last_node, contact.max_pressure,
+                  contact.contact_nodes);
   if (report.hertz) out += hertz_line("hertz       ", *report.hertz);
+  if (report.boussinesq) {
+    const PunchComparison& b = *report.boussinesq;
+    out += format("  boussinesq   P = 2 a E* delta = %.6g (a = %.6g, delta = %.6g): force error %+.2f%%, shape of p sqrt(a^2 - r^2) within %.2f%% for r <= 0.8 a\n",
+                  b.force, b.radius, b.approach, 100 * b.error_force, 100 * b.shape_error);
+  }
   if (contact.obstacles.size() > 1) {
     for (const ObstacleContact& o : contact.obstacles) {
-      out += format("  obstacle %-3d %s: force %.6g, half-width %.6g, max pressure %.6g, %d nodes\n", o.obstacle,
-                    scene.obstacles[o.obstacle].type().c_str(), o.total_force, o.half_width, o.max_pressure, o.contact_nodes);
+      out += format("  obstacle %-3d %s: force %.6g, %s %.6g, max pressure %.6g, %d nodes\n", o.obstacle,
+                    scene.obstacles[o.obstacle].type().c_str(), o.total_force, solid ? "radius" : "half-width",
+                    solid ? o.contact_radius : o.half_width, o.max_pressure, o.contact_nodes);
       if (const auto hertz = compare_with_hertz(model, o)) out += hertz_line("  hertz     ", *hertz);
     }
   }
   for (const Reaction& r : report.reactions)
-    out += format("  reaction     %s on \"%s\": (%.6g, %.6g)\n", r.load.c_str(), r.boundary.c_str(), r.force.x(), r.force.y());
+    out += solid ? format("  reaction     %s on \"%s\": (%.6g, %.6g, %.6g)\n", r.load.c_str(), r.boundary.c_str(), r.force.x(),
+                          r.force.y(), r.force.z())
+                 : format("  reaction     %s on \"%s\": (%.6g, %.6g)\n", r.load.c_str(), r.boundary.c_str(), r.force.x(), r.force.y());
   std::string times;
   for (const auto& [phase, seconds] : report.timings.phases())
     if (phase != "total") times += format("%s %.3f, ", phase.c_str(), seconds);
