@@ -1,8 +1,11 @@
-// The size field of the generated shapes: contact_size on the curves where contact can
-// happen, growing by `grading` per unit distance from them up to `size`, and the number of
-// triangles that gives (so an oversized request is refused before it takes the memory).
+// The size field of the generated shapes: contact_size on the curves (2D) or the zone (3D)
+// where contact can happen, growing by `grading` per unit distance from them up to `size`, and
+// the number of triangles or tetrahedra that gives (so an oversized request is refused before
+// it takes the memory).
 #pragma once
 
+#include <functional>
+#include <string>
 #include <vector>
 
 namespace contactqp::detail {
@@ -34,5 +37,20 @@ void set_graded_size_field(const GradedSize& sizes, const std::vector<int>& fine
 // Triangles of a body of area `area` meshed with that field around fine curves of length
 // `fine_length`, within a factor of about 1.5. All lengths in one unit.
 double estimate_graded_triangles(const GradedSize& sizes, double area, double fine_length);
+
+// 3D: sets Gmsh's background mesh to s(x) = min(size, contact_size + grading · d(x)), where
+// `distance` is d(x) as a Gmsh MathEval expression in x, y, z (the distance from the fine
+// zone, 0 inside it), and the options of the 3D meshers: sizes from the field only, surfaces
+// by Frontal-Delaunay, volumes by `algorithm_3d` (Gmsh's Mesh.Algorithm3D: 1 Delaunay, 10 HXT).
+// Call between occ::synchronize() and mesh::generate(3).
+void set_graded_size_expression(const GradedSize& sizes, const std::string& distance, int algorithm_3d);
+
+// Tetrahedra of a body of volume `volume` meshed with the graded size of the distance d from
+// its fine zone, within a factor of about 2: the zone (d = 0) holds `fine_volume`, and
+// shell_area(d) is the area of the body's points at distance d > 0 (the derivative of the
+// volume within distance d). Shells are counted until they cover the body's volume, the rest
+// at the far-field size. All lengths in one unit.
+double estimate_graded_tetrahedra(const GradedSize& sizes, double volume, double fine_volume,
+                                  const std::function<double(double)>& shell_area);
 
 }  // namespace contactqp::detail

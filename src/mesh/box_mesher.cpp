@@ -1,0 +1,116 @@
+#include "box_mesher.hpp"
+
+#include <gmsh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "gmsh_model.hpp"
+
+namespace contactqp::detail {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The geometry is meshed in units of the height and scaled afterwards (as the rectangle is),
+// so a scaled scene has exactly the scaled mesh.
+GradedSize unit_sizes(const BoxMeshRequest& request) {
+  return {request.size / request.height, request.contact_size / request.height, request.grading};
+}
+
+// The box in units of the height: [x0, x1] × [y0, y1] × [0, 1].
+struct UnitBox {
+  double x0, x1, y0, y1;
+  bool contains(double x, double y, double z) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1 && z <= 1; }
+};
+
+UnitBox unit_box(const BoxMeshRequest& request) {
+  const double w = request.width / request.height, d = request.depth / request.height;
+  return {request.symmetry ? 0.0 : -w / 2, w / 2, request.symmetry ? 0.0 : -d / 2, d / 2};
+}
+
+// The area of the body's points at distance d > 0 from the fine disc (centre c, radius r):
+// the surface at distance d from a disc lying on the half-space z ≥ 0 is a flat disc at
+// height d and the quarter torus around its rim, each clipped to the box by a midpoint rule.
+double shell_area(const UnitBox& box, const Eigen::Vector2d& c, double r, double d) {
+  const int n = 48;
+  double area = 0;
+  for (int j = 0; j < n; ++j) {
+    const double phi = 2 * kPi * (j + 0.5) / n, cx = std::cos(phi), sy = std::sin(phi);
+    for (int i = 0; i < n; ++i) {
+      const double rho = r * (i + 0.5) / n;  // the flat part, ring by ring
+      if (box.contains(c.x() + rho * cx, c.y() + rho * sy, d)) area += rho * (r / n) * (2 * kPi / n);
+      const double alpha = 0.5 * kPi * (i + 0.5) / n;  // the rounded part: rim + d (sin α, cos α)
+      const double out = r + d * std::sin(alpha);
+      if (box.contains(c.x() + out * cx, c.y() + out * sy, d * std::cos(alpha)))
+        area += out * d * (0.5 * kPi / n) * (2 * kPi / n);
+    }
+  }
+  return area;
+}
+
+}  // namespace
+
+double estimate_box_elements(const BoxMeshRequest& request) {
+  const UnitBox box = unit_box(request);
+  const Eigen::Vector2d c = request.fine_centre / request.height;
+  const double r = request.fine_radius / request.height;
+  return estimate_graded_tetrahedra(unit_sizes(request), (box.x1 - box.x0) * (box.y1 - box.y0), 0.0,
+                                    [&](double d) { return shell_area(box, c, r, d); });
+}
+
+Mesh mesh_box(const BoxMeshRequest& request) {
+  GmshSession session;
+  gmsh::model::add("box");
+  namespace occ = gmsh::model::occ;
+  const UnitBox box = unit_box(request);
+  const int volume = occ::addBox(box.x0, box.y0, 0, box.x1 - box.x0, box.y1 - box.y0, 1);
+  occ::synchronize();
+  throw_if_gmsh_failed();
+
+  // The faces are told apart by their bounding boxes (OpenCASCADE numbers them as it likes).
+  struct Side {
+    const char* name;
+    int axis;  // 0 x, 1 y, 2 z
+    double at;
+  };
+  const Side sides[] = {{"bottom", 2, 0.0},
+                        {"top", 2, 1.0},
+                        {request.symmetry ? "symmetry_x" : "left", 0, box.x0},
+                        {"right", 0, box.x1},
+                        {request.symmetry ? "symmetry_y" : "front", 1, box.y0},
+                        {"back", 1, box.y1}};
+  gmsh::vectorpair faces;
+  gmsh::model::getEntities(faces, 2);
+  for (const Side& side : sides) {
+    std::vector<int> tags;
+    for (const auto& [dim, tag] : faces) {
+      double low[3], high[3];
+      gmsh::model::getBoundingBox(dim, tag, low[0], low[1], low[2], high[0], high[1], high[2]);
+      if (std::abs(low[side.axis] - side.at) < 1e-6 && std::abs(high[side.axis] - side.at) < 1e-6) tags.push_back(tag);
+    }
+    gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, tags), side.name);
+  }
+  gmsh::model::addPhysicalGroup(3, {volume});
+
+  // Distance to the disc: sqrt(max(0, ρ − r)² + z²) with ρ the distance from its centre's axis.
+  // Every number is parenthesised: Gmsh's MathEval misreads "y - -0.1" (the box would get a
+  // garbage size field and no elements at all).
+  const Eigen::Vector2d c = request.fine_centre / request.height;
+  char outside[256];
+  std::snprintf(outside, sizeof outside,
+                "Max(0, Sqrt((x - (%.17g))*(x - (%.17g)) + (y - (%.17g))*(y - (%.17g))) - (%.17g))", c.x(), c.x(), c.y(),
+                c.y(), request.fine_radius / request.height);
+  const std::string distance = "Sqrt(" + std::string(outside) + "*" + outside + " + z*z)";
+  set_graded_size_expression(unit_sizes(request), distance, request.algorithm_3d);
+  gmsh::option::setNumber("Mesh.ElementOrder", request.order);
+  gmsh::model::mesh::generate(3);
+  throw_if_gmsh_failed();
+  Mesh mesh = mesh_from_gmsh(request.height);
+  mesh.regions.clear();
+  return mesh;
+}
+
+}  // namespace contactqp::detail

@@ -1,0 +1,99 @@
+#include "hemisphere_mesher.hpp"
+
+#include <gmsh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "gmsh_model.hpp"
+
+namespace contactqp::detail {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Meshed in units of R and scaled afterwards (as the half disc is): the mesh of a scaled
+// scene is then exactly the scaled mesh (Gmsh's geometric tolerances are absolute).
+GradedSize unit_sizes(const HemisphereMeshRequest& request) {
+  return {request.size / request.radius, request.contact_size / request.radius, request.grading};
+}
+
+// The area of the sphere |x| = ρ about the lowest point that lies in the half ball of radius 1
+// centred at (0, 0, 1): points of polar angle θ (from +z) with ρ²/2 ≤ z = ρ cos θ ≤ 1, so
+// 2π ρ² (min(1, 1/ρ) − ρ/2) for ρ ≤ √2, nothing beyond. Its integral from 0 is the volume
+// within ρ of the lowest point: π ρ³ (8 − 3ρ) / 12 for ρ ≤ 1.
+double shell_area(double rho) {
+  if (rho <= 0 || rho >= std::sqrt(2.0)) return 0.0;
+  return 2 * kPi * rho * rho * std::max(0.0, std::min(1.0, 1 / rho) - rho / 2);
+}
+
+double volume_within(double rho) {
+  // ∫ shell_area: the closed form up to ρ = 1, then the half ball minus what lies beyond.
+  if (rho <= 1) return kPi * rho * rho * rho * (8 - 3 * rho) / 12;
+  const double r = std::min(rho, std::sqrt(2.0));
+  // For 1 < ρ ≤ √2: ∫_1^ρ 2π (s − s³/2) ds = π (ρ² − 1) − π (ρ⁴ − 1) / 4.
+  return 5 * kPi / 12 + kPi * (r * r - 1) - kPi * (r * r * r * r - 1) / 4;
+}
+
+}  // namespace
+
+double estimate_hemisphere_elements(const HemisphereMeshRequest& request) {
+  const double quarter = request.symmetry ? 0.25 : 1.0;
+  const double fine = std::min(request.fine_radius / request.radius, std::sqrt(2.0));
+  return estimate_graded_tetrahedra(unit_sizes(request), quarter * 2 * kPi / 3, quarter * volume_within(fine),
+                                    [quarter, fine](double d) { return quarter * shell_area(fine + d); });
+}
+
+Mesh mesh_hemisphere(const HemisphereMeshRequest& request) {
+  GmshSession session;
+  gmsh::model::add("hemisphere");
+  namespace occ = gmsh::model::occ;
+  // The half ball is the ball cut by the slab (or the quarter slab) z ∈ [0, 1]: OpenCASCADE
+  // gives it a spherical face, a flat top and, for the quarter, two planar faces.
+  const int ball = occ::addSphere(0, 0, 1, 1);
+  const int slab = request.symmetry ? occ::addBox(0, 0, 0, 1.5, 1.5, 1) : occ::addBox(-1.5, -1.5, 0, 3, 3, 1);
+  gmsh::vectorpair body;
+  std::vector<gmsh::vectorpair> map;
+  occ::intersect({{3, ball}}, {{3, slab}}, body, map);
+  occ::synchronize();
+  throw_if_gmsh_failed();
+
+  // The faces are told apart by their bounding boxes (OpenCASCADE numbers them as it likes).
+  std::vector<int> surface, top, symmetry_x, symmetry_y;
+  gmsh::vectorpair faces;
+  gmsh::model::getEntities(faces, 2);
+  const double tolerance = 1e-6;
+  for (const auto& [dim, tag] : faces) {
+    double x0, y0, z0, x1, y1, z1;
+    gmsh::model::getBoundingBox(dim, tag, x0, y0, z0, x1, y1, z1);
+    if (z0 > 1 - tolerance) top.push_back(tag);
+    else if (request.symmetry && x1 < tolerance) symmetry_x.push_back(tag);
+    else if (request.symmetry && y1 < tolerance) symmetry_y.push_back(tag);
+    else surface.push_back(tag);
+  }
+  auto name = [](int dim, const std::vector<int>& tags, const char* text) {
+    gmsh::model::setPhysicalName(dim, gmsh::model::addPhysicalGroup(dim, tags), text);
+  };
+  name(2, surface, "surface");
+  name(2, top, "top");
+  if (request.symmetry) {
+    name(2, symmetry_x, "symmetry_x");
+    name(2, symmetry_y, "symmetry_y");
+  }
+  std::vector<int> volumes;
+  for (const auto& [dim, tag] : body) volumes.push_back(tag);
+  gmsh::model::addPhysicalGroup(3, volumes);
+
+  char distance[128];
+  std::snprintf(distance, sizeof distance, "Max(0, Sqrt(x*x + y*y + z*z) - (%.17g))", request.fine_radius / request.radius);
+  set_graded_size_expression(unit_sizes(request), distance, request.algorithm_3d);
+  gmsh::option::setNumber("Mesh.ElementOrder", request.order);
+  gmsh::model::mesh::generate(3);
+  throw_if_gmsh_failed();
+  Mesh mesh = mesh_from_gmsh(request.radius);
+  mesh.regions.clear();  // the generated body has no named regions
+  return mesh;
+}
+
+}  // namespace contactqp::detail

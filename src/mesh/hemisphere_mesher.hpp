@@ -1,0 +1,39 @@
+// The hemisphere body of Hertz's problem in 3D, meshed by Gmsh with tetrahedra graded from a
+// fine size around the lowest point (where contact starts) to a coarse size far from it.
+#pragma once
+
+#include "contactqp/mesh.hpp"
+#include "graded_size.hpp"
+
+namespace contactqp::detail {
+
+// The body is the lower half of the ball of radius R centred at (0, 0, R): its flat top is the
+// disc z = R, its lowest point (0, 0, 0). With symmetry, the quarter x ≥ 0, y ≥ 0 of it.
+//
+// The fine zone is the ball of radius fine_radius around the lowest point: the element size
+// is contact_size within it and grows by `grading` per unit distance from it up to `size`,
+// s(x) = min(size, contact_size + grading · max(0, |x| − fine_radius)). A contact zone given as
+// a cap of polar angle φ around the lowest point (seen from the centre) is the fine radius
+// 2R sin(φ/2), the chord from the lowest point to the cap's rim.
+struct HemisphereMeshRequest {
+  double radius = 1;
+  bool symmetry = false;
+  double size = 0.1;           // far-field element size (length)
+  double contact_size = 0.01;  // element size in the fine zone (length)
+  double grading = 0.25;       // size growth per unit distance from the fine zone
+  int order = 1;               // 1: 4-node tetrahedra; 2: 10-node (curved, mid-edge nodes on the sphere)
+  double fine_radius = 0.1;    // length; 0 refines at the lowest point only
+  int algorithm_3d = 1;        // Gmsh's Mesh.Algorithm3D: 1 Delaunay, 10 HXT
+};
+
+// A dim-3 Mesh with boundaries "surface" (the spherical part) and "top" (z = R), and with
+// symmetry "symmetry_x" (the plane x = 0) and "symmetry_y" (y = 0). No regions or points.
+// Every node of "surface", mid-edge nodes too, lies on the sphere. Throws std::runtime_error
+// when Gmsh fails.
+Mesh mesh_hemisphere(const HemisphereMeshRequest& request);
+
+// The number of tetrahedra the request will give, within a factor of about 2, computed
+// without meshing (so that an oversized request can be refused before it takes the memory).
+double estimate_hemisphere_elements(const HemisphereMeshRequest& request);
+
+}  // namespace contactqp::detail
