@@ -21,9 +21,9 @@ struct Candidate {
   int node = -1;
   int obstacle = -1;
   double gap = 0;              // initial gap (x_i − p)·n along the obstacle normal (length)
-  // The boundary the node stands for: in 2D its length ∫ N_i ds over its edges (length); in 3D
-  // its area (docs/scenes.md, "Tributary areas": a third of each linear face, and for 6-node
-  // faces a third of each of the four 3-node sub-triangles the face splits into) (area).
+  // The boundary the node stands for, ∫ N_i over its faces: in 2D a length (∫ N_i ds over its
+  // edges), in 3D an area (a third of each linear face; for a 6-node face 0 at its vertices
+  // and a third of the face at each mid-side node: docs/scenes.md, "Tributary areas").
   double tributary = 0;
 };
 

@@ -70,6 +70,12 @@ struct ContactSummary {
   double max_non_candidate_penetration = 0;  // (length)
 };
 
+// The contact pressure at each constraint row's node: λ_i / (w_i · thickness) (2D) or λ_i / w_i
+// (3D), w_i the candidate's tributary. Where w_i is 0 — a vertex of a 6-node face, whose
+// consistent weight vanishes — the mean pressure of the mid-side nodes beside it on the contact
+// boundary's faces (rows of the same obstacle).
+std::vector<double> nodal_pressures(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& lambda);
+
 ContactSummary summarize_contact(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
                                  const Eigen::VectorXd& lambda);
 

@@ -45,10 +45,12 @@ double triangle_area(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const E
   return 0.5 * (b - a).cross(c - a).norm();
 }
 
-// A 3D face: a third of a linear face's area to each vertex (= ∫ N_i dA). A 6-node face's
-// consistent weights ∫ N_i dA are 0 at its vertices, which divides no force: instead it is
-// split into its four 3-node sub-triangles (at the mid-side nodes) and each gives a third of
-// its area to its three nodes (a vertex A/12, a mid-side A/4 on a flat face).
+// A 3D face: a third of a linear face's area to each vertex (= ∫ N_i dA). A 6-node face gives
+// its consistent weights too, ∫ N_i dA: 0 at its vertices and a third of its area (the sum of
+// its four 3-node sub-triangles at the mid-sides) to each mid-side node. The contact forces
+// follow these weights — a 10-node body's vertices carry almost none (docs/scenes.md,
+// "Tributary areas") — so the pressure at a vertex is taken from its mid-sides instead
+// (nodal_pressures in post.hpp).
 void add_face(const Mesh& mesh, const BoundaryFace& face, NodeSums& per_node) {
   const Eigen::Vector3d normal = face_normal(mesh, face);
   const auto& x = mesh.nodes;
@@ -59,12 +61,10 @@ void add_face(const Mesh& mesh, const BoundaryFace& face, NodeSums& per_node) {
     return;
   }
   const int sub[4][3] = {{v[0], v[3], v[5]}, {v[1], v[4], v[3]}, {v[2], v[5], v[4]}, {v[3], v[4], v[5]}};
-  std::map<int, double> share;
-  for (const auto& t : sub) {
-    const double third = triangle_area(x[t[0]], x[t[1]], x[t[2]]) / 3.0;
-    for (int k = 0; k < 3; ++k) share[t[k]] += third;
-  }
-  for (int k = 0; k < 6; ++k) add_to(per_node, v[k], normal, share[v[k]]);
+  double area = 0;
+  for (const auto& t : sub) area += triangle_area(x[t[0]], x[t[1]], x[t[2]]);
+  for (int k = 0; k < 3; ++k) add_to(per_node, v[k], normal, 0.0);
+  for (int k = 3; k < 6; ++k) add_to(per_node, v[k], normal, area / 3.0);
 }
 
 }  // namespace

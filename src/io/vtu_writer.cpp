@@ -90,10 +90,10 @@ ContactFields contact_fields(const RunReport& report, const Eigen::VectorXd& dis
   std::vector<bool> candidate(n, false);
   const double infinity = std::numeric_limits<double>::infinity();
   Eigen::VectorXd gap = Eigen::VectorXd::Constant(n, infinity);
+  const std::vector<double> pressure = nodal_pressures(model, qp, lambda);
   for (int i = 0; i < qp.n_constraints(); ++i) {
     const Candidate& c = model.candidates[i];
-    const double w = c.tributary * thickness;
-    fields.pressure[c.node] += w > 0 ? lambda[i] / w : 0.0;
+    fields.pressure[c.node] += pressure[i];
     const Eigen::Vector3d normal = detail::project(model.scene.obstacles[c.obstacle], model.mesh.nodes[c.node]).normal;
     fields.force.segment(dim * c.node, dim) += lambda[i] * normal.head(dim);
     gap[c.node] = std::min(gap[c.node], slack[i]);

@@ -149,11 +149,18 @@ ContactSummary summarize_contact(const Model& model, const QuadraticProgram& qp,
     point.obstacle = candidate.obstacle;
     if (!solid) point.s = detail::surface_coordinate(obstacle, x, origins[candidate.obstacle]);
     point.force = lambda[i];
-    point.pressure = candidate.tributary > 0 ? lambda[i] / (candidate.tributary * thickness) : 0.0;
     summary.obstacles[candidate.obstacle].profile.push_back(point);
     summary.obstacles[candidate.obstacle].resultant += lambda[i] * detail::project(obstacle, x).normal;
     points[candidate.obstacle].push_back(x);
     tributary[candidate.obstacle].push_back(candidate.tributary);
+  }
+  const std::vector<double> pressure = nodal_pressures(model, qp, lambda);
+  {
+    std::vector<size_t> next(n_obstacles, 0);
+    for (int i = 0; i < qp.n_constraints(); ++i) {
+      const int o = model.candidates[i].obstacle;
+      summary.obstacles[o].profile[next[o]++].pressure = pressure[i];
+    }
   }
   const double lambda_max = lambda.size() ? lambda.maxCoeff() : 0.0;
   for (ObstacleContact& contact : summary.obstacles) {

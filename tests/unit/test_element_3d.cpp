@@ -79,7 +79,7 @@ TEST_CASE("tetrahedra: a constant strain gives the exact strain energy", "[unit]
   const Eigen::MatrixXd Ke = element_stiffness(element_type(3, order), x.data(), solid_law(E, nu), 1.0);
   Eigen::Matrix3d A;
   A << 1e-3, 2e-3, -1e-3, 5e-4, -2e-3, 3e-4, -7e-4, 1e-4, 4e-3;
-  const Eigen::VectorXd u = linear_field(x, Eigen::Vector3d(0.1, -0.2, 0.3), A);
+  const Eigen::VectorXd u = linear_field(x, Eigen::Vector3d(1e-3, -2e-3, 3e-3), A);  // a rigid part of the size of the strains
   const Eigen::Matrix3d eps = 0.5 * (A + A.transpose());
   const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
   const Eigen::Matrix3d sigma = lambda * eps.trace() * Eigen::Matrix3d::Identity() + 2 * mu * eps;
