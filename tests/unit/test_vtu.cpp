@@ -20,6 +20,23 @@ std::vector<std::string> shipped_scenes() {
   return scenes;
 }
 
+// A 3D scene: tetrahedra (VTK_TETRA, VTK_QUADRATIC_TETRA), all six stresses, a displacement
+// with a z component.
+void check_3d_vtu(const json& grid, const json& result) {
+  CHECK(grid["cell_types"] == json::array({result["element_order"] == 1 ? 10 : 24}));
+  for (const char* name : {"displacement", "contact_force"}) CHECK(grid["arrays"][name]["components"] == 3);
+  for (const char* name : {"sigma_xx", "sigma_yy", "sigma_zz", "sigma_xy", "sigma_yz", "sigma_xz", "von_mises",
+                           "contact_pressure", "gap", "contact_boundary"}) {
+    CAPTURE(name);
+    REQUIRE(grid["arrays"].contains(name));
+    CHECK(grid["arrays"][name]["tuples"] == result["nodes"]);
+    CHECK(grid["arrays"][name]["finite"] == true);
+  }
+  CHECK(grid["arrays"]["displacement"]["min"][2].get<double>() < 0.0);  // pressed down along z
+  CHECK(grid["arrays"]["contact_pressure"]["max"][0].get<double>() ==
+        Approx(result["contact"]["max_pressure"].get<double>()).epsilon(1e-12));
+}
+
 void check_vtu_of(const std::string& scene) {
   CAPTURE(scene);
   TemporaryDirectory directory;
@@ -33,6 +50,10 @@ void check_vtu_of(const std::string& scene) {
   const json grid = json::parse(read_text(read_back));
   CHECK(grid["points"] == result["nodes"]);
   CHECK(grid["cells"] == result["elements"]);
+  if (result.value("dimension", 2) == 3) {
+    check_3d_vtu(grid, result);
+    return;
+  }
   CHECK(grid["cell_types"] == json::array({result["element_order"] == 1 ? 5 : 22}));  // VTK_TRIANGLE, VTK_QUADRATIC_TRIANGLE
   const std::pair<const char*, int> arrays[] = {{"displacement", 3}, {"sigma_xx", 1}, {"sigma_yy", 1}, {"sigma_xy", 1},
                                                 {"sigma_zz", 1}, {"von_mises", 1}, {"contact_pressure", 1},
