@@ -17,17 +17,23 @@ constexpr double kPi = 3.14159265358979323846;
 // The geometry is meshed in units of the height and scaled afterwards (as the rectangle is),
 // so a scaled scene has exactly the scaled mesh.
 GradedSize unit_sizes(const BoxMeshRequest& request) {
-  return {request.size / request.height, request.contact_size / request.height, request.grading};
+  return {unit_length(request.size, request.height), unit_length(request.contact_size, request.height), request.grading};
 }
 
 // The box in units of the height: [x0, x1] × [y0, y1] × [0, 1].
+// The fine disc in units of the height: centre and radius.
+Eigen::Vector2d unit_centre(const BoxMeshRequest& request) {
+  return {unit_length(request.fine_centre.x(), request.height), unit_length(request.fine_centre.y(), request.height)};
+}
+double unit_radius(const BoxMeshRequest& request) { return unit_length(request.fine_radius, request.height); }
+
 struct UnitBox {
   double x0, x1, y0, y1;
   bool contains(double x, double y, double z) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1 && z <= 1; }
 };
 
 UnitBox unit_box(const BoxMeshRequest& request) {
-  const double w = request.width / request.height, d = request.depth / request.height;
+  const double w = unit_length(request.width, request.height), d = unit_length(request.depth, request.height);
   return {request.symmetry ? 0.0 : -w / 2, w / 2, request.symmetry ? 0.0 : -d / 2, d / 2};
 }
 
@@ -55,8 +61,8 @@ double shell_area(const UnitBox& box, const Eigen::Vector2d& c, double r, double
 
 double estimate_box_elements(const BoxMeshRequest& request) {
   const UnitBox box = unit_box(request);
-  const Eigen::Vector2d c = request.fine_centre / request.height;
-  const double r = request.fine_radius / request.height;
+  const Eigen::Vector2d c = unit_centre(request);
+  const double r = unit_radius(request);
   return estimate_graded_tetrahedra(unit_sizes(request), (box.x1 - box.x0) * (box.y1 - box.y0), 0.0,
                                     [&](double d) { return shell_area(box, c, r, d); });
 }
@@ -98,11 +104,11 @@ Mesh mesh_box(const BoxMeshRequest& request) {
   // Distance to the disc: sqrt(max(0, ρ − r)² + z²) with ρ the distance from its centre's axis.
   // Every number is parenthesised: Gmsh's MathEval misreads "y - -0.1" (the box would get a
   // garbage size field and no elements at all).
-  const Eigen::Vector2d c = request.fine_centre / request.height;
+  const Eigen::Vector2d c = unit_centre(request);
   char outside[256];
   std::snprintf(outside, sizeof outside,
                 "Max(0, Sqrt((x - (%.17g))*(x - (%.17g)) + (y - (%.17g))*(y - (%.17g))) - (%.17g))", c.x(), c.x(), c.y(),
-                c.y(), request.fine_radius / request.height);
+                c.y(), unit_radius(request));
   const std::string distance = "Sqrt(" + std::string(outside) + "*" + outside + " + z*z)";
   set_graded_size_expression(unit_sizes(request), distance, request.algorithm_3d);
   gmsh::option::setNumber("Mesh.ElementOrder", request.order);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 namespace contactqp::detail {
 namespace {
@@ -98,6 +99,12 @@ double estimate_graded_triangles(const GradedSize& sizes, double area, double fi
   return triangles;
 }
 
+double unit_length(double length, double unit) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.12g", length / unit);
+  return std::strtod(text, nullptr);
+}
+
 void set_graded_size_expression(const GradedSize& sizes, const std::string& distance, int algorithm_3d) {
   // The distance is written out in x, y, z rather than taken from a Distance field: in 3D that
   // field measures to sampled points of curves or to the nodes of already meshed surfaces,
@@ -122,20 +129,22 @@ double estimate_graded_tetrahedra(const GradedSize& sizes, double volume, double
   // t = ln s, dd = s dt / γ, a shell holds A(d) s dt / γ of volume and A(d) dt / (γ k s²)
   // tetrahedra, smooth in t however small cs is against the body.
   const double cs = sizes.contact_size, h = sizes.size, gamma = sizes.grading;
+  if (!(gamma > 0) || !(h > cs)) {  // one size everywhere
+    const double s = std::min(cs, h);
+    return kGmshTetrahedra * volume / (kTetrahedronVolume * s * s * s);
+  }
   double covered = std::min(volume, fine_volume);
   double tetrahedra = covered / (kTetrahedronVolume * cs * cs * cs);
-  if (h > cs && gamma > 0) {
-    const int steps = 2000;
-    const double t0 = std::log(cs), dt = (std::log(h) - t0) / steps;
-    for (int k = 0; k < steps && covered < volume; ++k) {
-      const double s = std::exp(t0 + (k + 0.5) * dt);
-      const double area = shell_area((s - cs) / gamma);
-      const double shell = area * s * dt / gamma;
-      if (!(shell > 0)) continue;
-      const double fraction = std::min(1.0, (volume - covered) / shell);
-      tetrahedra += fraction * area * dt / (gamma * kTetrahedronVolume * s * s);
-      covered += fraction * shell;
-    }
+  const int steps = 2000;
+  const double t0 = std::log(cs), dt = (std::log(h) - t0) / steps;
+  for (int k = 0; k < steps && covered < volume; ++k) {
+    const double s = std::exp(t0 + (k + 0.5) * dt);
+    const double area = shell_area((s - cs) / gamma);
+    const double shell = area * s * dt / gamma;
+    if (!(shell > 0)) continue;
+    const double fraction = std::min(1.0, (volume - covered) / shell);
+    tetrahedra += fraction * area * dt / (gamma * kTetrahedronVolume * s * s);
+    covered += fraction * shell;
   }
   tetrahedra += std::max(0.0, volume - covered) / (kTetrahedronVolume * h * h * h);
   return kGmshTetrahedra * tetrahedra;

@@ -16,8 +16,10 @@ constexpr double kPi = 3.14159265358979323846;
 // Meshed in units of R and scaled afterwards (as the half disc is): the mesh of a scaled
 // scene is then exactly the scaled mesh (Gmsh's geometric tolerances are absolute).
 GradedSize unit_sizes(const HemisphereMeshRequest& request) {
-  return {request.size / request.radius, request.contact_size / request.radius, request.grading};
+  return {unit_length(request.size, request.radius), unit_length(request.contact_size, request.radius), request.grading};
 }
+
+double unit_fine_radius(const HemisphereMeshRequest& request) { return unit_length(request.fine_radius, request.radius); }
 
 // The area of the sphere |x| = ρ about the lowest point that lies in the half ball of radius 1
 // centred at (0, 0, 1): points of polar angle θ (from +z) with ρ²/2 ≤ z = ρ cos θ ≤ 1, so
@@ -40,7 +42,7 @@ double volume_within(double rho) {
 
 double estimate_hemisphere_elements(const HemisphereMeshRequest& request) {
   const double quarter = request.symmetry ? 0.25 : 1.0;
-  const double fine = std::min(request.fine_radius / request.radius, std::sqrt(2.0));
+  const double fine = std::min(unit_fine_radius(request), std::sqrt(2.0));
   return estimate_graded_tetrahedra(unit_sizes(request), quarter * 2 * kPi / 3, quarter * volume_within(fine),
                                     [quarter, fine](double d) { return quarter * shell_area(fine + d); });
 }
@@ -86,7 +88,7 @@ Mesh mesh_hemisphere(const HemisphereMeshRequest& request) {
   gmsh::model::addPhysicalGroup(3, volumes);
 
   char distance[128];
-  std::snprintf(distance, sizeof distance, "Max(0, Sqrt(x*x + y*y + z*z) - (%.17g))", request.fine_radius / request.radius);
+  std::snprintf(distance, sizeof distance, "Max(0, Sqrt(x*x + y*y + z*z) - (%.17g))", unit_fine_radius(request));
   set_graded_size_expression(unit_sizes(request), distance, request.algorithm_3d);
   gmsh::option::setNumber("Mesh.ElementOrder", request.order);
   gmsh::model::mesh::generate(3);

@@ -381,6 +381,13 @@ TEST_CASE("the 3D estimates are within a factor of 2 of Gmsh's counts", "[unit][
       CHECK(box_ratio < 2.0);
     }
   }
+  // Without grading the contact size fills the body: more elements than with it.
+  HemisphereMeshRequest uniform, graded;
+  uniform.grading = 0;
+  CHECK(estimate_hemisphere_elements(uniform) > 2 * estimate_hemisphere_elements(graded));
+  BoxMeshRequest uniform_box, graded_box;
+  uniform_box.grading = 0;
+  CHECK(estimate_box_elements(uniform_box) > 2 * estimate_box_elements(graded_box));
   // An absurd request is estimated, not meshed, and the estimate is finite and huge.
   HemisphereMeshRequest absurd;
   absurd.contact_size = 1e-9;
@@ -473,5 +480,46 @@ TEST_CASE("a 2D body is still dim 2 with z = 0 and edge faces", "[unit][gmsh][3d
   for (const BoundaryFace& face : mesh.boundaries.at("arc")) {
     CHECK(face.n_nodes == 3);
     CHECK(std::abs((mesh.nodes[face.nodes[2]] - Eigen::Vector3d(0, 1, 0)).norm() - 1) < 1e-12);
+  }
+}
+
+TEST_CASE("a scaled 3D request gives exactly the scaled mesh", "[unit][gmsh][3d]") {
+  // The unit sizes of R = 0.7 (0.2 · 0.7 / 0.7 = 0.19999999999999998) once gave Gmsh's
+  // Delaunay a different mesh; lengths are rounded in units of R (graded_size.hpp).
+  const auto same = [](const Mesh& a, const Mesh& b, double scale) {
+    REQUIRE(a.n_nodes() == b.n_nodes());
+    REQUIRE(a.elements == b.elements);
+    double worst = 0;
+    for (int k = 0; k < a.n_nodes(); ++k) worst = std::max(worst, (scale * a.nodes[k] - b.nodes[k]).norm() / scale);
+    CHECK(worst < 1e-13);
+    for (const auto& [name, faces] : a.boundaries) CHECK(b.boundaries.at(name).size() == faces.size());
+  };
+  const auto hemisphere = [](double R) {
+    HemisphereMeshRequest r;
+    r.radius = R;
+    r.symmetry = true;
+    r.size = 0.2 * R;
+    r.contact_size = 0.02 * R;
+    r.grading = 0.2;
+    r.fine_radius = 0.15 * R;
+    return mesh_hemisphere(r);
+  };
+  const auto box = [](double L) {
+    BoxMeshRequest b;
+    b.width = 20 * L;
+    b.depth = 16 * L;
+    b.height = 10 * L;
+    b.symmetry = true;
+    b.size = 2 * L;
+    b.contact_size = 0.1 * L;
+    b.grading = 0.3;
+    b.fine_radius = 1.1 * L;
+    return mesh_box(b);
+  };
+  const Mesh unit_hemisphere = hemisphere(1), unit_box = box(1);
+  for (double scale : {0.7, 3.0, 1e3, 1e-3}) {
+    CAPTURE(scale);
+    same(unit_hemisphere, hemisphere(scale), scale);
+    same(unit_box, box(scale), scale);
   }
 }
