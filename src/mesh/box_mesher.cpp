@@ -72,7 +72,20 @@ Mesh mesh_box(const BoxMeshRequest& request) {
   gmsh::model::add("box");
   namespace occ = gmsh::model::occ;
   const UnitBox box = unit_box(request);
-  const int volume = occ::addBox(box.x0, box.y0, 0, box.x1 - box.x0, box.y1 - box.y0, 1);
+  int volume = occ::addBox(box.x0, box.y0, 0, box.x1 - box.x0, box.y1 - box.y0, 1);
+  const double rim = unit_length(request.rim_radius, request.height);
+  if (rim > 0) {
+    // The rim's disc, cut to the bottom face, splits that face: the volume is fragmented by it.
+    const Eigen::Vector2d c = unit_centre(request);
+    const int disc = occ::addDisk(c.x(), c.y(), 0, rim, rim);
+    const int bottom = occ::addRectangle(box.x0, box.y0, 0, box.x1 - box.x0, box.y1 - box.y0);
+    gmsh::vectorpair on_bottom, fragments;
+    std::vector<gmsh::vectorpair> map;
+    occ::intersect({{2, disc}}, {{2, bottom}}, on_bottom, map);
+    occ::fragment({{3, volume}}, on_bottom, fragments, map);
+    for (const auto& [dim, tag] : fragments)
+      if (dim == 3) volume = tag;
+  }
   occ::synchronize();
   throw_if_gmsh_failed();
 

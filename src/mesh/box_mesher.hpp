@@ -25,12 +25,16 @@ struct BoxMeshRequest {
   int order = 1;               // 1: 4-node tetrahedra; 2: 10-node
   Eigen::Vector2d fine_centre = Eigen::Vector2d::Zero();  // (x, y) on the bottom face (length)
   double fine_radius = 0.1;                               // length; 0 refines at the centre only
+  // > 0: the circle of this radius around fine_centre is embedded in the bottom face, so
+  // that mesh nodes lie on it (the rim of a flat punch, where the pressure is singular and
+  // the contact zone ends); its part outside the bottom face is dropped. Length.
+  double rim_radius = 0;
   // Gmsh's Mesh.Algorithm3D: 1 Delaunay (the default: the same mesh on every run), 10 HXT
   // (2–5 times faster, but its mesh differs from run to run in Gmsh 4.8).
   int algorithm_3d = 1;
 };
 
-// A dim-3 Mesh with boundaries "bottom" (z = 0), "top" (z = height), "left" (x = −width/2),
+// A dim-3 Mesh with boundaries "bottom" (z = 0, inside and outside the rim alike), "top" (z = height), "left" (x = −width/2),
 // "right" (x = width/2), "front" (y = −depth/2), "back" (y = depth/2); with symmetry
 // "symmetry_x" (x = 0) and "symmetry_y" (y = 0) instead of "left" and "front". No regions or
 // points. Throws std::runtime_error when Gmsh fails.

@@ -349,6 +349,37 @@ TEST_CASE("the box: exact volume, six faces on their planes with outward normals
   CHECK(far < 1.6 * request.size);
 }
 
+TEST_CASE("the box with a punch's rim embedded: nodes on the circle, the same body", "[unit][gmsh][3d]") {
+  const bool symmetry = GENERATE(false, true);
+  CAPTURE(symmetry);
+  BoxMeshRequest request;
+  request.width = 8;
+  request.depth = 6;
+  request.height = 4;
+  request.symmetry = symmetry;
+  request.size = 1.0;
+  request.contact_size = 0.1;
+  request.grading = 0.3;
+  request.fine_radius = 0.6;
+  request.rim_radius = 0.5;
+  request.fine_centre = symmetry ? Eigen::Vector2d(0, 0) : Eigen::Vector2d(0.5, -0.75);
+  const Mesh mesh = mesh_box(request);
+  check_no_defect(mesh);
+  CHECK(total_volume(mesh) == Approx((symmetry ? 0.25 : 1.0) * 8 * 6 * 4).epsilon(1e-12));
+  CHECK(mesh.boundaries.size() == 6);
+  check_boundaries_tile_surface(mesh);
+  for (const BoundaryFace& face : mesh.boundaries.at("bottom"))
+    CHECK(face_normal(mesh, face).isApprox(Eigen::Vector3d(0, 0, -1), 1e-12));
+  // Nodes on the rim, about one per contact_size of its length.
+  const Eigen::Vector2d c = request.fine_centre;
+  int on_rim = 0;
+  for (int node : boundary_nodes(mesh, "bottom"))
+    on_rim += std::abs(std::hypot(mesh.nodes[node].x() - c.x(), mesh.nodes[node].y() - c.y()) - request.rim_radius) < 1e-9;
+  const double length = (symmetry ? 0.25 : 1.0) * 2 * kPi * request.rim_radius;
+  CHECK(on_rim > 0.7 * length / request.contact_size);
+  CHECK(on_rim < 2.0 * length / request.contact_size);
+}
+
 TEST_CASE("the 3D estimates are within a factor of 2 of Gmsh's counts", "[unit][gmsh][3d]") {
   struct Sizes {
     double size, contact_size, grading, fine_radius;
