@@ -29,9 +29,7 @@ struct BoxMeshRequest {
   // that mesh nodes lie on it (the rim of a flat punch, where the pressure is singular and
   // the contact zone ends); its part outside the bottom face is dropped. Length.
   double rim_radius = 0;
-  // Gmsh's Mesh.Algorithm3D: 1 Delaunay (the default: the same mesh on every run), 10 HXT
-  // (2–5 times faster, but its mesh differs from run to run in Gmsh 4.8).
-  int algorithm_3d = 1;
+  VolumeAlgorithm volume_algorithm = VolumeAlgorithm::Delaunay;  // see graded_size.hpp
 };
 
 // A dim-3 Mesh with boundaries "bottom" (z = 0, inside and outside the rim alike), "top" (z = height), "left" (x = −width/2),

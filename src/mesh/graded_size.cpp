@@ -105,7 +105,7 @@ double unit_length(double length, double unit) {
   return std::strtod(text, nullptr);
 }
 
-void set_graded_size_expression(const GradedSize& sizes, const std::string& distance, int algorithm_3d) {
+void set_graded_size_expression(const GradedSize& sizes, const std::string& distance, VolumeAlgorithm algorithm) {
   // The distance is written out in x, y, z rather than taken from a Distance field: in 3D that
   // field measures to sampled points of curves or to the nodes of already meshed surfaces,
   // while the fine zones of the generated shapes (a ball, a disc) have closed-form distances.
@@ -120,7 +120,7 @@ void set_graded_size_expression(const GradedSize& sizes, const std::string& dist
   gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
   gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
   gmsh::option::setNumber("Mesh.Algorithm", 6);  // Frontal-Delaunay: well-shaped surface triangles
-  gmsh::option::setNumber("Mesh.Algorithm3D", algorithm_3d);
+  gmsh::option::setNumber("Mesh.Algorithm3D", algorithm == VolumeAlgorithm::Hxt ? 10 : 1);
 }
 
 double estimate_graded_tetrahedra(const GradedSize& sizes, double volume, double fine_volume,

@@ -89,7 +89,7 @@ Mesh mesh_hemisphere(const HemisphereMeshRequest& request) {
 
   char distance[128];
   std::snprintf(distance, sizeof distance, "Max(0, Sqrt(x*x + y*y + z*z) - (%.17g))", unit_fine_radius(request));
-  set_graded_size_expression(unit_sizes(request), distance, request.algorithm_3d);
+  set_graded_size_expression(unit_sizes(request), distance, request.volume_algorithm);
   gmsh::option::setNumber("Mesh.ElementOrder", request.order);
   gmsh::model::mesh::generate(3);
   throw_if_gmsh_failed();

@@ -23,9 +23,7 @@ struct HemisphereMeshRequest {
   double grading = 0.25;       // size growth per unit distance from the fine zone
   int order = 1;               // 1: 4-node tetrahedra; 2: 10-node (curved, mid-edge nodes on the sphere)
   double fine_radius = 0.1;    // length; 0 refines at the lowest point only
-  // Gmsh's Mesh.Algorithm3D: 1 Delaunay (the default: the same mesh on every run), 10 HXT
-  // (2–5 times faster, but its mesh differs from run to run in Gmsh 4.8).
-  int algorithm_3d = 1;
+  VolumeAlgorithm volume_algorithm = VolumeAlgorithm::Delaunay;  // see graded_size.hpp
 };
 
 // A dim-3 Mesh with boundaries "surface" (the spherical part) and "top" (z = R), and with

@@ -123,7 +123,7 @@ const std::vector<std::string> kTet10Nodes = {"1 0 0 0",     "2 1 0 0",     "3 0
 
 }  // namespace
 
-TEST_CASE("Gmsh's reference nodes: its 10-node tetrahedron reordered is ours, its 6-node triangle is ours",
+TEST_CASE("Gmsh's reference nodes: its 10-node tetrahedron reordered is ours and its 6-node triangle is ours",
           "[unit][gmsh][3d]") {
   GmshSession session;
   std::string name;
@@ -150,7 +150,7 @@ TEST_CASE("Gmsh's reference nodes: its 10-node tetrahedron reordered is ours, it
   }
 }
 
-TEST_CASE("a 10-node tetrahedron read from a .msh has our node order, turned positive when it is not",
+TEST_CASE("a 10-node tetrahedron read from a .msh has our node order and is turned positive when it is not",
           "[unit][gmsh][3d]") {
   ScratchDirectory directory;
   const bool negative = GENERATE(false, true);
@@ -183,7 +183,7 @@ TEST_CASE("a 10-node tetrahedron read from a .msh has our node order, turned pos
   CHECK(mesh.regions.at("body") == std::vector<int>{0});
 }
 
-TEST_CASE("the quarter hemisphere: volume, faces on the sphere and the planes, outward normals", "[unit][gmsh][3d]") {
+TEST_CASE("the quarter hemisphere: volume and faces on the sphere and the planes with outward normals", "[unit][gmsh][3d]") {
   const int order = GENERATE(1, 2);
   CAPTURE(order);
   HemisphereMeshRequest request;
@@ -282,7 +282,7 @@ TEST_CASE("the whole hemisphere has a spherical surface and a flat top only", "[
   CHECK(lowest == Approx(0.0).margin(1e-12));  // the lowest point is a node: where contact starts
 }
 
-TEST_CASE("the box: exact volume, six faces on their planes with outward normals, refined on the disc",
+TEST_CASE("the box: exact volume and six faces on their planes with outward normals and refined on the disc",
           "[unit][gmsh][3d]") {
   const bool symmetry = GENERATE(false, true);
   const int order = GENERATE(1, 2);
@@ -349,7 +349,7 @@ TEST_CASE("the box: exact volume, six faces on their planes with outward normals
   CHECK(far < 1.6 * request.size);
 }
 
-TEST_CASE("the box with a punch's rim embedded: nodes on the circle, the same body", "[unit][gmsh][3d]") {
+TEST_CASE("the box with a punch's rim embedded has nodes on the circle and the same body", "[unit][gmsh][3d]") {
   const bool symmetry = GENERATE(false, true);
   CAPTURE(symmetry);
   BoxMeshRequest request;
@@ -384,7 +384,7 @@ TEST_CASE("the 3D estimates are within a factor of 2 of Gmsh's counts", "[unit][
   struct Sizes {
     double size, contact_size, grading, fine_radius;
   };
-  for (const Sizes& s : {Sizes{0.2, 0.02, 0.1, 0.2}, Sizes{0.2, 0.01, 0.3, 0.2}, Sizes{0.3, 0.03, 0.2, 0.0}}) {
+  for (const Sizes& s : {Sizes{0.2, 0.02, 0.1, 0.2}, Sizes{0.2, 0.015, 0.3, 0.2}, Sizes{0.3, 0.03, 0.2, 0.0}}) {
     for (bool symmetry : {true, false}) {
       CAPTURE(s.contact_size, s.grading, s.fine_radius, symmetry);
       HemisphereMeshRequest hemisphere;
@@ -553,4 +553,23 @@ TEST_CASE("a scaled 3D request gives exactly the scaled mesh", "[unit][gmsh][3d]
     same(unit_hemisphere, hemisphere(scale), scale);
     same(unit_box, box(scale), scale);
   }
+}
+
+TEST_CASE("HXT meshes the same bodies with usable tetrahedra", "[unit][gmsh][3d]") {
+  HemisphereMeshRequest hemisphere;
+  hemisphere.symmetry = true;
+  hemisphere.size = 0.3;
+  hemisphere.contact_size = 0.05;
+  hemisphere.order = 2;
+  hemisphere.volume_algorithm = VolumeAlgorithm::Hxt;
+  const Mesh mesh = mesh_hemisphere(hemisphere);
+  check_no_defect(mesh);
+  check_boundaries_tile_surface(mesh);
+  CHECK(std::abs(isoparametric_volume(mesh) - kPi / 6) < 1e-3 * kPi / 6);
+  BoxMeshRequest box;
+  box.symmetry = true;
+  box.volume_algorithm = VolumeAlgorithm::Hxt;
+  const Mesh block = mesh_box(box);
+  check_no_defect(block);
+  CHECK(total_volume(block) == Approx(0.25).epsilon(1e-12));
 }
