@@ -15,18 +15,18 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // The geometry is meshed in units of the height and scaled afterwards (as the rectangle is),
-// so a scaled scene has exactly the scaled mesh.
+// so a scaled scene has exactly the scaled mesh (lengths rounded: see unit_length).
 GradedSize unit_sizes(const BoxMeshRequest& request) {
   return {unit_length(request.size, request.height), unit_length(request.contact_size, request.height), request.grading};
 }
 
-// The box in units of the height: [x0, x1] × [y0, y1] × [0, 1].
 // The fine disc in units of the height: centre and radius.
 Eigen::Vector2d unit_centre(const BoxMeshRequest& request) {
   return {unit_length(request.fine_centre.x(), request.height), unit_length(request.fine_centre.y(), request.height)};
 }
 double unit_radius(const BoxMeshRequest& request) { return unit_length(request.fine_radius, request.height); }
 
+// The box in units of the height: [x0, x1] × [y0, y1] × [0, 1].
 struct UnitBox {
   double x0, x1, y0, y1;
   bool contains(double x, double y, double z) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1 && z <= 1; }
@@ -44,13 +44,13 @@ double shell_area(const UnitBox& box, const Eigen::Vector2d& c, double r, double
   const int n = 48;
   double area = 0;
   for (int j = 0; j < n; ++j) {
-    const double phi = 2 * kPi * (j + 0.5) / n, cx = std::cos(phi), sy = std::sin(phi);
+    const double phi = 2 * kPi * (j + 0.5) / n, cos_phi = std::cos(phi), sin_phi = std::sin(phi);
     for (int i = 0; i < n; ++i) {
       const double rho = r * (i + 0.5) / n;  // the flat part, ring by ring
-      if (box.contains(c.x() + rho * cx, c.y() + rho * sy, d)) area += rho * (r / n) * (2 * kPi / n);
+      if (box.contains(c.x() + rho * cos_phi, c.y() + rho * sin_phi, d)) area += rho * (r / n) * (2 * kPi / n);
       const double alpha = 0.5 * kPi * (i + 0.5) / n;  // the rounded part: rim + d (sin α, cos α)
       const double out = r + d * std::sin(alpha);
-      if (box.contains(c.x() + out * cx, c.y() + out * sy, d * std::cos(alpha)))
+      if (box.contains(c.x() + out * cos_phi, c.y() + out * sin_phi, d * std::cos(alpha)))
         area += out * d * (0.5 * kPi / n) * (2 * kPi / n);
     }
   }

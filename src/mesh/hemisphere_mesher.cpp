@@ -14,7 +14,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // Meshed in units of R and scaled afterwards (as the half disc is): the mesh of a scaled
-// scene is then exactly the scaled mesh (Gmsh's geometric tolerances are absolute).
+// scene is then exactly the scaled mesh (Gmsh's geometric tolerances are absolute; lengths
+// are rounded in units of R, see unit_length).
 GradedSize unit_sizes(const HemisphereMeshRequest& request) {
   return {unit_length(request.size, request.radius), unit_length(request.contact_size, request.radius), request.grading};
 }
