@@ -47,8 +47,9 @@ double unit_length(double length, double unit);
 // Gmsh's tetrahedral meshers, by name (its Mesh.Algorithm3D 1 and 10).
 enum class VolumeAlgorithm {
   Delaunay,  // the default: the same mesh on every run
-  Hxt,       // 2–5 times less CPU on the quarter hemisphere, but not reproducible: its mesh
-             // differs from run to run in Gmsh 4.8, even on one thread
+  Hxt,       // 1.4–5.6 times less CPU on the quarter hemisphere (contact sizes 0.02–0.005 R,
+             // orders 1–2), but not reproducible: its mesh differs from run to run in Gmsh
+             // 4.8, even on one thread
 };
 
 // 3D: sets Gmsh's background mesh to s(x) = min(size, contact_size + grading · d(x)), where
