@@ -257,7 +257,8 @@ Mesh mesh_from_gmsh(double scale) {
     }
     if (highest > 1e-9 * extent)
       throw std::runtime_error("node " + std::to_string(highest_tag) + " has z = " + std::to_string(highest) +
-                               ": the body must lie in the plane z = 0");
+                               ": a 2D body must lie in the plane z = 0 (a 3D body needs its tetrahedra in the "
+                               "file: with physical groups, Gmsh saves only their elements, so add a Physical Volume)");
   }
   const double largest = largest_element_measure(mesh);
   for (int e = 0; e < mesh.n_elements(); ++e) {

@@ -467,6 +467,11 @@ Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 1};
 Curve Loop(1) = {1, 2, 3}; Plane Surface(1) = {1};
 )");
   const Mesh triangle = read_gmsh_file({flat, order});
+  // The block's surfaces alone (a .msh saved with physical surfaces but no physical volume):
+  // not read as a flat body, and the message says what is missing.
+  const std::string shell = directory.write("shell.msh", msh22({"1 0 0 0", "2 1 0 0", "3 0 1 0", "4 0 0 1"},
+                                                                {"1 2 2 1 1 1 2 3", "2 2 2 1 2 1 2 4"}));
+  CHECK_THROWS_WITH(read_gmsh_file({shell}), Catch::Matchers::Contains("add a Physical Volume"));
   CHECK(triangle.dim == 2);
   CHECK(triangle.type() == (order == 1 ? ElementType::Tri3 : ElementType::Tri6));
 }
