@@ -1,6 +1,8 @@
 #include <Eigen/Geometry>
 #include "contactqp/mesh.hpp"
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -30,7 +32,15 @@ struct FaceKeyHash {
 FaceKey key_of(const int* vertices, int n) {
   FaceKey key;
   for (int k = 0; k < n; ++k) key.v[k] = vertices[k];
-  std::sort(key.v.begin(), key.v.begin() + n);
+  // Two or three entries: compare-and-swap (std::sort here draws a false -Warray-bounds from GCC 12).
+  auto order = [&](int i, int j) {
+    if (key.v[i] > key.v[j]) std::swap(key.v[i], key.v[j]);
+  };
+  order(0, 1);
+  if (n == 3) {
+    order(1, 2);
+    order(0, 1);
+  }
   return key;
 }
 

@@ -177,6 +177,16 @@ Mesh mesh_box_body(const Scene& scene, double max_gap, const BuildOptions& optio
   auto outward = [](double, double) { return Eigen::Vector3d(0, 0, -1); };
   const double r_max = 0.5 * std::hypot(body.width, body.depth);
   request.fine_radius = fine_radius(surface, outward, r_max, scene.obstacles, max_gap, body.mesh.contact_size);
+  // A punch centred on the bottom face: its rim circle becomes a line of the mesh, so the
+  // pressure's singular edge falls on nodes (one punch; several leave the face as it is).
+  int punches = 0;
+  for (const ObstacleSpec& obstacle : scene.obstacles)
+    if (const auto* punch = obstacle.as<PunchObstacle>()) {
+      const bool centred = punch->center.head<2>().norm() <= 1e-12 * body.width && std::abs(punch->center.z()) <= 1e-12 * body.height &&
+                           std::abs(std::abs(punch->axis.z()) - 1) <= 1e-12;
+      if (centred && ++punches == 1) request.rim_radius = punch->radius;
+    }
+  if (punches > 1) request.rim_radius = 0;
   refuse_oversized(estimate_box_elements(request), options, "tetrahedra");
   return generate([&] { return mesh_box(request); });
 }
