@@ -1,6 +1,6 @@
 // A pin: a cylinder of radius R = 1 and length 2 with a hemispherical end, the end's lowest
 // point at the origin. Physical surfaces "tip" (the spherical end), "top" (the flat end) and
-// "side"; the volume "pin". The mesh is graded from 0.025 at the lowest point to 0.3.
+// "side"; the volume "pin". The mesh is graded from 0.012 at the lowest point to 0.3.
 SetFactory("OpenCASCADE");
 R = 1;
 L = 2;
@@ -17,7 +17,7 @@ Physical Surface("top") = top();
 Physical Surface("side") = side();
 Physical Volume("pin") = {3};
 Field[1] = MathEval;
-Field[1].F = "Min(0.3, 0.025 + 0.3 * Sqrt(x * x + y * y + z * z))";
+Field[1].F = "Min(0.3, 0.012 + 0.3 * Sqrt(x * x + y * y + z * z))";
 Background Field = 1;
 Mesh.MeshSizeExtendFromBoundary = 0;
 Mesh.MeshSizeFromPoints = 0;

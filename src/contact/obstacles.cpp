@@ -9,6 +9,9 @@
 namespace contactqp::detail {
 namespace {
 
+// A point this close to a punch's rim circle, relative to its radius, is on its face.
+constexpr double kRimTolerance = 1e-9;
+
 // Unit normal of segment a→b (in the plane z = 0) on the body's side.
 Eigen::Vector3d segment_normal(const Eigen::Vector3d& a, const Eigen::Vector3d& b, bool body_on_left) {
   const Eigen::Vector3d d = (b - a).normalized();
@@ -87,7 +90,8 @@ ObstacleProjection project_punch(const PunchObstacle& punch, const Eigen::Vector
   const double h = y.dot(punch.axis);
   const Eigen::Vector3d radial = y - h * punch.axis;
   const double r = radial.norm();
-  if (r <= punch.radius) return {h, punch.axis};
+  // Nodes placed on the rim belong to the face, whatever the round-off in their radius.
+  if (r <= punch.radius * (1 + kRimTolerance)) return {h, punch.axis};
   const Eigen::Vector3d outward = radial / r;
   if (h < 0) return {r - punch.radius, outward};
   const Eigen::Vector3d d = y - punch.radius * outward;  // from the rim point

@@ -20,9 +20,35 @@ struct BadScene {
   std::string names;  // what the one-line message must contain
 };
 
-// A 10-node-free, inverted tetrahedron in a Gmsh 2.2 file: vertices 1 2 3 4 with (x1 − x0)·((x2
-// − x0) × (x3 − x0)) < 0, and its faces as a physical surface.
+// Two tetrahedra in a Gmsh 2.2 file that disagree in orientation — (1 2 3 4) positive, (1 2 3 5)
+// negative, a tangled mesh that turning the volume as a whole cannot mend — with a face as a
+// physical surface.
 const char* kInvertedTet = R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$PhysicalNames
+2
+2 1 "surface"
+3 2 "body"
+$EndPhysicalNames
+$Nodes
+5
+1 0 0 0
+2 1 0 0
+3 0 1 0
+4 0 0 1
+5 0 0 -1
+$EndNodes
+$Elements
+3
+1 2 2 1 1 1 2 3
+2 4 2 2 1 1 2 3 4
+3 4 2 2 1 1 2 3 5
+$EndElements
+)";
+
+// One well-shaped tetrahedron: a 3D mesh that a 2D scene must refuse.
+const char* kOneTet = R"($MeshFormat
 2.2 0 8
 $EndMeshFormat
 $PhysicalNames
@@ -33,19 +59,19 @@ $EndPhysicalNames
 $Nodes
 4
 1 0 0 0
-2 0 1 0
-3 1 0 0
+2 1 0 0
+3 0 1 0
 4 0 0 1
 $EndNodes
 $Elements
 2
-1 2 2 1 1 1 2 3
+1 2 2 1 1 1 3 2
 2 4 2 2 1 1 2 3 4
 $EndElements
 )";
 
-std::vector<BadScene> bad_scenes(const std::string& inverted_msh) {
-  auto patch = [](const char* p) { return patched_scene("scenes/hertz-sphere.json", p); };
+std::vector<BadScene> bad_scenes(const std::string& inverted_msh, const std::string& tet_msh) {
+  auto patch = [](const std::string& p) { return patched_scene("scenes/hertz-sphere.json", p); };
   return {
       {patch(R"({"load": {"value": [null, -0.01]}})"), "load.value"},
       {patch(R"({"obstacle": {"normal": [0, 1]}})"), "obstacle.normal"},
@@ -66,7 +92,7 @@ std::vector<BadScene> bad_scenes(const std::string& inverted_msh) {
       {patch(R"({"body": {"formulation": "mixed"}})"), "body.formulation"},
       {patch(R"({"load": {"boundary": "arc"}})"), "load.boundary = \"arc\": not a boundary of a hemisphere"},
       {patch(R"({"body": {"shape": "mesh", "file": ")" + inverted_msh + R"(", "radius": null, "mesh": null, "symmetry": false}, "contact": {"boundary": "surface"}, "load": {"boundary": "surface"}})"), "inverted"},
-      {patched_scene("scenes/hertz.json", R"({"body": {"shape": "mesh", "file": ")" + inverted_msh + R"(", "radius": null, "mesh": null, "symmetry": false}, "contact": {"boundary": "surface"}, "load": {"boundary": "surface"}})"), "3D mesh"},
+      {patched_scene("scenes/hertz.json", R"({"body": {"shape": "mesh", "file": ")" + tet_msh + R"(", "radius": null, "mesh": null, "symmetry": false}, "contact": {"boundary": "surface"}, "load": {"boundary": "surface"}})"), "3D mesh"},
   };
 }
 
@@ -83,8 +109,10 @@ TEST_CASE("bad 3D input: exit 2, one line naming the field or element, nothing w
   TemporaryDirectory directory;
   const std::string msh = directory.path("inverted.msh");
   std::ofstream(msh) << kInvertedTet;
+  const std::string tet = directory.path("tet.msh");
+  std::ofstream(tet) << kOneTet;
   int k = 0;
-  for (const BadScene& bad : bad_scenes(msh)) {
+  for (const BadScene& bad : bad_scenes(msh, tet)) {
     CAPTURE(bad.text, bad.names);
     const std::string scene = directory.path("scene" + std::to_string(k++) + ".json");
     std::ofstream(scene) << bad.text;

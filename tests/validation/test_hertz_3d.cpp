@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "contactqp/certificate.hpp"
+#include "contactqp/errors.hpp"
 #include "contactqp/post.hpp"
 #include "contactqp/solve.hpp"
 #include "test_support.hpp"
@@ -121,7 +122,7 @@ TEST_CASE("a block pressed flat on a plane in 3D: uniform pressure E δ/H, exact
 }
 
 TEST_CASE("scenes/punch.json: Boussinesq's force within 5% and the pressure's shape", "[validation][boussinesq][3d]") {
-  const SceneRun run = run_scene("scenes/punch.json", R"({"body": {"mesh": {"contact_size": 0.1}}})");
+  const SceneRun run = run_scene("scenes/punch.json", R"({"body": {"mesh": {"contact_size": 0.06}}})");
   REQUIRE(run.result.status == Status::Converged);
   const auto punch = compare_with_boussinesq(run.model, run.contact);
   REQUIRE(punch.has_value());
