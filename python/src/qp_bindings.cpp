@@ -45,8 +45,8 @@ QuadraticProgram make_qp(py::handle K_in, py::handle f_in, py::handle B_in, py::
   if (qp.f.size() != n)
     throw InputError("f", "has " + std::to_string(qp.f.size()) + " entries, K has " + std::to_string(n) + " rows");
   if (B_in.is_none() != g_in.is_none())
-    throw InputError(B_in.is_none() ? "B" : "g", "is None but " + std::string(B_in.is_none() ? "g" : "B") +
-                                                     " is given: give both, or neither for no constraints");
+    throw InputError(B_in.is_none() ? "B" : "g", "= None: must be given with " + std::string(B_in.is_none() ? "g" : "B") +
+                                                     " (both None: no constraints)");
   if (B_in.is_none()) {
     qp.B = SparseMatrix(0, n);
     qp.g = VectorXd(0);
