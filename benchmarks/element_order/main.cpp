@@ -26,7 +26,7 @@ using namespace contactqp;
 
 namespace {
 
-// ARCHITECTURE.md: an independent finite-element code gives P ≈ 0.008657 E R on this geometry.
+// docs/architecture.md: an independent finite-element code gives P ≈ 0.008657 E R on this geometry.
 constexpr double kReferenceForce = 0.008657;
 
 // A family of meshes: one element order and grading, refined by contact_size.

@@ -38,7 +38,7 @@ struct RunReport {
   std::vector<std::string> warnings;  // also printed on stderr
 };
 
-// The result JSON (README: "Result file"). Numbers that are not finite are written as null.
+// The result JSON (docs/cli.md, "Result file"). Numbers that are not finite are written as null.
 std::string result_json(const RunReport& report);
 
 // The pressure profile: s, pressure, nodal force, Hertz's pressure when it applies, obstacle.

@@ -88,7 +88,7 @@ struct CompareReport {
 CompareReport compare_scene(const Scene& scene, const CompareOptions& options = {});
 CompareReport compare_scene(const std::string& scene_path, const CompareOptions& options = {});
 
-// The comparison as the JSON `contactqp compare --json` writes (README: "Comparing backends").
+// The comparison as the JSON `contactqp compare --json` writes (docs/cli.md).
 std::string compare_json(const CompareReport& report);
 
 }  // namespace contactqp

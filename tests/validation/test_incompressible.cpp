@@ -1,6 +1,6 @@
 // Nearly incompressible plane strain against Hertz: 3-node triangles lock as ν → 0.5,
-// 6-node ones stiffen a little, the mixed formulation does not (README: "Nearly
-// incompressible bodies", where benchmarks/incompressible measures the whole table).
+// 6-node ones stiffen a little, the mixed formulation does not (docs/incompressible.md, where
+// benchmarks/incompressible measures the whole table).
 #include <catch2/catch.hpp>
 
 #include "contactqp/post.hpp"
