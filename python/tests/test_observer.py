@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 import contactqp
-from conftest import random_qp
+from conftest import random_qp, source_path
 
 
 def dual_function(K, f, B, g, lam):
@@ -69,5 +69,5 @@ def test_an_exception_in_the_observer_is_raised_after_the_solve():
 
 def test_solve_scene_observer():
     seen = []
-    r = contactqp.solve_scene("scenes/hertz.json", backend="uzawa", observer=lambda k, u, lam: seen.append(k))
+    r = contactqp.solve_scene(source_path("scenes/hertz.json"), backend="uzawa", observer=lambda k, u, lam: seen.append(k))
     assert seen and seen[-1] <= r.iterations + 1 and len(r.lam) > 0
