@@ -5,7 +5,8 @@
 # parser's fuzzer; g++'s own sanitizer runtimes (libasan8, libubsan1) come with g++.
 # pybind11-dev, python3-dev (Python's headers) and python3-pybind11 build the contactqp Python
 # module for Debian's /usr/bin/python3; python3-scipy (scipy.sparse in) and python3-pytest run
-# its tests. pybind11-dev does not depend on python3-dev, so both are listed.
+# its tests. pybind11-dev does not depend on python3-dev, so both are listed. doxygen builds the
+# API reference from the public headers (the ctest entry api_reference_builds).
 set -eu
 packages="cmake g++ make pkg-config
   libeigen3-dev libsuitesparse-dev libopenblas-dev
@@ -14,7 +15,8 @@ packages="cmake g++ make pkg-config
   libgmsh-dev gmsh
   clang libclang-rt-dev
   python3 python3-numpy python3-matplotlib python3-vtk9 python3-getfem
-  python3-dev pybind11-dev python3-pybind11 python3-scipy python3-pytest"
+  python3-dev pybind11-dev python3-pybind11 python3-scipy python3-pytest
+  doxygen"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
