@@ -136,14 +136,27 @@ void apply(const SolverArguments& arguments, SolveOptions& options) {
   if (!arguments.max_iterations.is_none()) {
     if (py::isinstance<py::bool_>(arguments.max_iterations) || !py::isinstance<py::int_>(arguments.max_iterations))
       throw InputError("max_iterations", "is a " + type_name(arguments.max_iterations) + ": must be a positive integer");
-    const long long n = arguments.max_iterations.cast<long long>();
-    require(n > 0 && n <= 2147483647LL, "max_iterations", n, "must be a positive integer below 2^31");
+    const long long n = to_positive_integer(arguments.max_iterations, "max_iterations");
+    require(n <= 2147483647LL, "max_iterations", n, "must be a positive integer below 2^31");
     options.max_iterations = static_cast<int>(n);
   }
   if (!arguments.verbose.is_none()) options.verbose = py::bool_(arguments.verbose);
   if (!arguments.scale.is_none()) options.scale = py::bool_(arguments.scale);
   for (const auto& [key, value] : to_backend_options(arguments.backend_options, "backend_options"))
     options.backend_options[key] = value;
+}
+
+long long to_positive_integer(py::handle value, const std::string& field) {
+  if (py::isinstance<py::bool_>(value) || !py::isinstance<py::int_>(value))
+    throw InputError(field, "is a " + type_name(value) + ": must be a positive integer");
+  long long n = 0;
+  try {
+    n = value.cast<long long>();
+  } catch (const py::cast_error&) {
+    throw InputError(field, "= " + std::string(py::str(value)) + ": must be a positive integer below 2^63");
+  }
+  require(n > 0, field, n, "must be positive");
+  return n;
 }
 
 py::dict to_dict(const Timings& timings) {

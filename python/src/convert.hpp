@@ -41,6 +41,9 @@ struct SolverArguments {
 };
 void apply(const SolverArguments& arguments, SolveOptions& options);
 
+// A positive integer (e.g. max_elements); InputError(field, ...) for anything else.
+long long to_positive_integer(py::handle value, const std::string& field);
+
 // Seconds per phase as a dict, in the order the phases were recorded.
 py::dict to_dict(const Timings& timings);
 

@@ -79,10 +79,7 @@ RunReport run(py::handle path, const SolverArguments& arguments, py::object obse
   apply(arguments, scene.solver);
   RunOptions options;
   options.no_contact = no_contact;
-  if (!max_elements.is_none()) {
-    options.build.max_elements = max_elements.cast<long long>();
-    require(options.build.max_elements > 0, "max_elements", options.build.max_elements, "must be positive");
-  }
+  if (!max_elements.is_none()) options.build.max_elements = to_positive_integer(max_elements, "max_elements");
   Observer watch(observer, "observer");
   watch.install(scene.solver);
   RunReport report;
@@ -294,10 +291,7 @@ element_order, warnings; json(), csv(), vtu() give the output files' text.)")
         apply({py::none(), tol, rho, max_iterations, py::none(), backend_options, scale}, scene.solver);
         CompareOptions options;
         options.backends = backend_list(backends);
-        if (!max_elements.is_none()) {
-          options.build.max_elements = max_elements.cast<long long>();
-          require(options.build.max_elements > 0, "max_elements", options.build.max_elements, "must be positive");
-        }
+        if (!max_elements.is_none()) options.build.max_elements = to_positive_integer(max_elements, "max_elements");
         py::gil_scoped_release release;
         return std::make_shared<CompareReport>(compare_scene(scene, options));
       },

@@ -89,6 +89,12 @@ def test_non_callable_observer(qp):
 def test_other_options(qp):
     raises_naming("max_iterations", contactqp.solve, qp, max_iterations=0)
     raises_naming("max_iterations", contactqp.solve, qp, max_iterations=1.5)
+    raises_naming("max_iterations", contactqp.solve, qp, max_iterations=2 ** 80)
+    raises_naming("max_elements", contactqp.solve_scene, source_path("scenes/hertz.json"), max_elements=0)
+    raises_naming("max_elements", contactqp.solve_scene, source_path("scenes/hertz.json"), max_elements="many")
+    # Within range but too small for the scene: the mesh refuses, naming its own field.
+    assert "limit of 10" in raises_naming("body.mesh", contactqp.solve_scene, source_path("scenes/hertz.json"),
+                                          max_elements=10)
     raises_naming("rho", contactqp.solve, qp, rho=-1.0)
     raises_naming("rho", contactqp.solve, qp, rho="fast")
     raises_naming("backend_options", contactqp.solve, qp, backend_options=["a=b"])
