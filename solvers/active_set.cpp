@@ -6,7 +6,7 @@
 //   iterate     λ ≥ 0, w = Sλ − h ≥ 0, λᵀw = 0                    (lcp.hpp: active set + safeguard)
 //   recover     u = K⁻¹ (f − Bᵀλ)                                  (one solve)
 //
-// w = g − Bu is the remaining gap of each row (ARCHITECTURE.md: B u − g = h − Sλ ≤ 0).
+// w = g − Bu is the remaining gap of each row (docs/architecture.md: B u − g = h − Sλ ≤ 0).
 #include <algorithm>
 #include <cmath>
 #include <memory>

@@ -7,7 +7,7 @@
 // carries no force: where the answer is "no contact", every backend should say λ = 0. The
 // rule is the same for every backend (a no-op for the projection methods):
 //   zero λ_i when s_i > √tol · L   (clearly positive: beyond the √tol band in which a
-//                                    degenerate active row may sit, ARCHITECTURE.md's Hölder bound)
+//                                    degenerate active row may sit, docs/architecture.md's Hölder bound)
 // row by row, smallest λ_i first, as long as the certificate's stationarity residual — the one
 // residual it can worsen — stays within max(tol, its value before) relative to the force
 // scale; complementarity and the duality gap only improve, primal feasibility does not

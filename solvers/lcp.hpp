@@ -1,4 +1,4 @@
-// The linear complementarity problem of the contact-condensed dual (README, "active_set"):
+// The linear complementarity problem of the contact-condensed dual (docs/backends.md, "active_set"):
 //
 //   λ ≥ 0,   w = Sλ − h ≥ 0,   λᵀw = 0          S symmetric positive definite (m × m)
 //

@@ -71,8 +71,16 @@ bool backend_available(Backend backend) {
   switch (backend) {
     case Backend::Uzawa: return true;
     case Backend::UzawaAccelerated: return true;
+#ifdef CONTACTQP_HAVE_IPOPT  // set by CMake when Ipopt was found (CONTACTQP_WITH_IPOPT)
     case Backend::Ipopt: return true;
+#else
+    case Backend::Ipopt: return false;
+#endif
+#ifdef CONTACTQP_HAVE_NLOPT
     case Backend::Nlopt: return true;
+#else
+    case Backend::Nlopt: return false;
+#endif
     case Backend::ActiveSet: return true;
   }
   return false;

@@ -2,7 +2,7 @@
 // step ρ from the spectrum of S = B K⁻¹ Bᵀ, the stopping rule, the divergence guard, the
 // fallback of --rho auto, and the closing message. Each backend supplies only its loop.
 //
-// Which rows the spectrum covers (README, "Choosing ρ"): the working set R of the rows that
+// Which rows the spectrum covers (docs/rho.md): the working set R of the rows that
 // the unconstrained solution u₀ = K⁻¹f violates, (B u₀ − g)_i > 0. These are exactly the rows
 // Uzawa's first step activates from λ = 0, and on contact problems they contain the rows that
 // end up active, so λ_max(S_R) bounds the active block's λ_max, which sets the asymptotic rate,

@@ -3,6 +3,10 @@
 # Debian bookworm). Skips apt entirely when everything is already installed. clang and
 # libclang-rt-dev (compiler-rt: libFuzzer and clang's sanitizer runtimes) build the scene
 # parser's fuzzer; g++'s own sanitizer runtimes (libasan8, libubsan1) come with g++.
+# pybind11-dev, python3-dev (Python's headers) and python3-pybind11 build the contactqp Python
+# module for Debian's /usr/bin/python3; python3-scipy (scipy.sparse in) and python3-pytest run
+# its tests. pybind11-dev does not depend on python3-dev, so both are listed. doxygen builds the
+# API reference from the public headers (the ctest entry api_reference_builds).
 set -eu
 packages="cmake g++ make pkg-config
   libeigen3-dev libsuitesparse-dev libopenblas-dev
@@ -10,7 +14,9 @@ packages="cmake g++ make pkg-config
   catch2 nlohmann-json3-dev libcli11-dev
   libgmsh-dev gmsh
   clang libclang-rt-dev
-  python3 python3-numpy python3-matplotlib python3-vtk9 python3-getfem"
+  python3 python3-numpy python3-matplotlib python3-vtk9 python3-getfem
+  python3-dev pybind11-dev python3-pybind11 python3-scipy python3-pytest
+  doxygen"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

@@ -18,6 +18,7 @@
 #include "contactqp/errors.hpp"
 #include "contactqp/io.hpp"
 #include "contactqp/post.hpp"
+#include "contactqp/run.hpp"
 #include "contactqp/solve.hpp"
 #include "out_arguments.hpp"
 
@@ -25,7 +26,7 @@ using namespace contactqp;
 
 namespace {
 
-// ARCHITECTURE.md: an independent finite-element code gives P ≈ 0.008657 E R on this geometry.
+// docs/architecture.md: an independent finite-element code gives P ≈ 0.008657 E R on this geometry.
 constexpr double kReferenceForce = 0.008657;
 
 // A family of meshes: one element order and grading, refined by contact_size.
@@ -105,11 +106,12 @@ int main(int argc, char** argv) {
       scene.body.mesh.grading = family.grading;
       scene.body.mesh.contact_size = contact_size;
       scene.solver.max_iterations = 200000;
-      Model model = build_model(scene);
-      const QuadraticProgram qp = assemble_qp(model);
-      const SolveResult result = solve(qp, scene.solver);
-      const ContactSummary contact = summarize_contact(model, qp, result.u, result.lambda);
-      const auto hertz = compare_with_hertz(model, contact);
+      const RunReport report = run_scene(scene);
+      const Model& model = *report.model;
+      const QuadraticProgram& qp = *report.qp;
+      const SolveResult& result = report.result;
+      const ContactSummary& contact = report.contact;
+      const auto& hertz = report.hertz;
       const double seconds = clock.seconds();
       csv << family.name << ',' << family.order << ',' << family.size << ',' << family.grading << ',' << contact_size
           << ',' << model.mesh.n_nodes() << ',' << model.mesh.n_elements() << ',' << qp.n_dofs() << ','

@@ -12,6 +12,7 @@
 #include "context.hpp"
 #include "contactqp/io.hpp"
 #include "contactqp/post.hpp"
+#include "contactqp/run.hpp"
 #include "contactqp/solve.hpp"
 #include "out_arguments.hpp"
 
@@ -65,11 +66,12 @@ int main(int argc, char** argv) {
       // The answer does not depend on the backend (tests/cross_backend); L-BFGS is the fastest.
       scene.solver.backend = Backend::Nlopt;
       scene.solver.max_iterations = 100000;
-      Model model = build_model(scene);
-      const QuadraticProgram qp = assemble_qp(model);
-      const SolveResult result = solve(qp, scene.solver);
-      const ContactSummary contact = summarize_contact(model, qp, result.u, result.lambda);
-      const auto hertz = compare_with_hertz(model, contact);
+      const RunReport report = run_scene(scene);
+      const Model& model = *report.model;
+      const QuadraticProgram& qp = *report.qp;
+      const SolveResult& result = report.result;
+      const ContactSummary& contact = report.contact;
+      const auto& hertz = report.hertz;
       const double seconds = clock.seconds();
       csv << variant.name << ',' << model.mesh.order << ',' << variant.formulation << ',' << scene.body.mesh.contact_size
           << ',' << nu << ',' << qp.n_dofs() << ',' << qp.n_constraints() << ',' << to_string(result.status) << ','

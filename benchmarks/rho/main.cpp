@@ -1,4 +1,4 @@
-// bench_rho: Uzawa's step ρ on Hertz scenes of several mesh sizes (README, "Choosing ρ").
+// bench_rho: Uzawa's step ρ on Hertz scenes of several mesh sizes (docs/rho.md).
 //
 // For each contact element size h (far field 50 h, as scenes/hertz.json has at h = 0.002 R)
 // the scene is generated from scenes/hertz.json, K is factored once, and

@@ -3,7 +3,7 @@
 // solve, and condense() of the contact rows (the active-set backend's extra work), repeated
 // --repeats times. For scale, S = B K⁻¹ Bᵀ is also formed the plain way, one dense solve with
 // all m columns of Bᵀ (CHOLMOD's blocked multi-right-hand-side solve), when n·m doubles fit in
-// 1 GiB. Writes orderings.csv and orderings-context.json (README, "Orderings").
+// 1 GiB. Writes orderings.csv and orderings-context.json (docs/scaling.md, "Orderings").
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <iostream>

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Regenerates everything of README "Scaling": builds the two benchmark executables, runs every
+# Regenerates everything of docs/scaling.md: builds the two benchmark executables, runs every
 # backend on the Hertz levels (1e3 to 1.1e6 DOFs) against one linear solve in the same process,
 # then the ordering study, and draws the figure and the tables.
 #

@@ -1,5 +1,5 @@
 // bench_tradeoff: what each digit of accuracy costs, per backend and per mesh, on Hertz's
-// cylinder (README, "Choosing speed or accuracy").
+// cylinder (docs/tradeoff.md).
 //
 // For each contact element size h the scene is generated from scenes/hertz.json by scaling its
 // size and contact_size together (far field = the scene's ratio × h); the model and the QP are

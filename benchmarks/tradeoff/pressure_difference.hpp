@@ -1,5 +1,5 @@
 // How far two meshes' contact pressures lie apart: the discretisation error of the coarser one
-// when the other is much finer (README, "Choosing speed or accuracy").
+// when the other is much finer (docs/tradeoff.md).
 #pragma once
 
 #include <vector>

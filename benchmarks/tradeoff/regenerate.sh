@@ -1,5 +1,5 @@
 #!/bin/sh
-# Regenerates everything of README "Choosing speed or accuracy": builds bench_tradeoff, runs the
+# Regenerates everything of docs/tradeoff.md: builds bench_tradeoff, runs the
 # GetFEM peer and the tradeoff study on the same meshes, and draws the figures and tables.
 #
 #     benchmarks/tradeoff/regenerate.sh [BUILD_DIR]        (default: build)

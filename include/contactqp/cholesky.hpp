@@ -12,7 +12,7 @@
 namespace contactqp {
 
 // The fill-reducing ordering CHOLMOD analyses with. Measured on the Hertz meshes up to 1.1e6
-// DOFs (README, "Orderings"), AMD gives the fastest analyse + factorise + solve (or within noise),
+// DOFs (docs/scaling.md, "Orderings"), AMD gives the fastest analyse + factorise + solve (or within noise),
 // so SolveOptions defaults to it; METIS needs about 30% less memory for L at 1e6 DOFs.
 enum class Ordering {
   Auto,   // CHOLMOD's default: AMD, and METIS as well when AMD's fill is high; the better one wins

@@ -1,4 +1,4 @@
-// Bad input, as opposed to a solver outcome (STYLE.md §4).
+// Bad input, as opposed to a solver outcome (docs/style.md §4).
 //
 // Every check of user input throws InputError before any work is done. The message is one
 // line: the field path, the offending value, the rule, and a hint when there is one, e.g.

@@ -1,6 +1,7 @@
 // Output files: the result JSON, the pressure profile CSV, written atomically.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,11 +21,13 @@ void check_output_path(const std::string& path, const std::string& field);
 // (and removes the temporary file).
 void write_file_atomically(const std::string& path, const std::string& content);
 
-// Everything one solve produced, for the result file and the summary.
+// Everything one solve produced, for the result file and the summary. run_scene() (run.hpp)
+// makes one. The report owns what it holds, the model and the QP included (shared, read-only),
+// so that it outlives the scene it came from, e.g. as a Python object.
 struct RunReport {
-  const Model* model = nullptr;
-  const QuadraticProgram* qp = nullptr;
-  SolveOptions options;
+  std::shared_ptr<const Model> model;
+  std::shared_ptr<const QuadraticProgram> qp;
+  SolveOptions options;  // as solved: the scene's solver section with the caller's overrides
   SolveResult result;
   Certificate certificate;
   ContactSummary contact;
@@ -36,7 +39,7 @@ struct RunReport {
   std::vector<std::string> warnings;  // also printed on stderr
 };
 
-// The result JSON (README: "Result file"). Numbers that are not finite are written as null.
+// The result JSON (docs/cli.md, "Result file"). Numbers that are not finite are written as null.
 std::string result_json(const RunReport& report);
 
 // The pressure profile: s, pressure, nodal force, Hertz's pressure when it applies, obstacle.

@@ -2,7 +2,7 @@
 //
 //     minimise  J(u) = ½ uᵀ K u − fᵀ u     subject to   B u ≤ g
 //
-// Sign conventions (ARCHITECTURE.md): row i of B is −nᵀ at the displacement DOFs of one
+// Sign conventions (docs/architecture.md): row i of B is −nᵀ at the displacement DOFs of one
 // candidate contact node, g_i = (x_i − p)·n is its initial gap (≥ 0 when not penetrating), and
 // the multiplier λ_i ≥ 0 is the nodal contact force, compression positive.
 #pragma once

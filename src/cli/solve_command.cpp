@@ -1,13 +1,11 @@
-// contactqp solve SCENE.json: build, solve, certify, post-process, report.
+// contactqp solve SCENE.json: run_scene() (run.hpp), then the summary and the output files.
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
 
 #include "commands.hpp"
-#include "contactqp/certificate.hpp"
-#include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"
-#include "contactqp/solve.hpp"
+#include "contactqp/run.hpp"
 
 namespace contactqp::cli {
 
@@ -46,7 +44,6 @@ void check_distinct_outputs(const std::string& scene_path, const std::vector<std
 namespace {
 
 int run_solve(const SolveArguments& arguments) {
-  Stopwatch total;
   // Every check of the input first: a run never computes what it cannot save.
   if (!arguments.json_path.empty()) check_output_path(arguments.json_path, "--json");
   if (!arguments.csv_path.empty()) check_output_path(arguments.csv_path, "--csv");
@@ -56,46 +53,11 @@ int run_solve(const SolveArguments& arguments) {
   require(arguments.max_elements > 0, "--max-elements", arguments.max_elements, "must be positive");
   Scene scene = load_scene(arguments.scene_path);
   apply_overrides(arguments, scene.solver);
-  validate_options(scene.solver);  // backend options too, before the mesh is built
 
-  BuildOptions build;
-  build.max_elements = arguments.max_elements;
-  Model model = build_model(scene, build);
-  QuadraticProgram qp = assemble_qp(model);
-
-  RunReport report;
-  report.model = &model;
-  report.qp = &qp;
-  report.options = scene.solver;
-  report.no_contact = arguments.no_contact;
-  report.result = arguments.no_contact ? solve_without_contact(qp, scene.solver) : solve(qp, scene.solver);
-
-  Stopwatch clock;
-  report.certificate = certify(qp, report.result.u, report.result.lambda, report.result.K_factor.get());
-  report.timings.merge(model.timings);
-  report.timings.merge(report.result.timings);
-  report.timings.add("certify", clock.seconds());
-  clock.restart();
-  report.contact = summarize_contact(model, qp, report.result.u, report.result.lambda);
-  if (!report.no_contact) {
-    report.hertz = compare_with_hertz(model, report.contact);
-    report.boussinesq = compare_with_boussinesq(model, report.contact);
-  }
-  report.reactions = reactions(model, qp, report.result.u, report.result.lambda);
-  report.timings.add("postprocess", clock.seconds());
-
-  report.warnings = model.warnings;
-  if (report.contact.penetrating_non_candidates > 0 && !report.no_contact)
-    report.warnings.push_back(std::to_string(report.contact.penetrating_non_candidates) +
-                              " boundary nodes outside the candidate set penetrate an obstacle (by up to " +
-                              detail::format_value(report.contact.max_non_candidate_penetration) +
-                              "); raise contact.max_gap");
-  // "total" is the whole run: the backend's own total stays under its name in the registry.
-  Timings timings;
-  for (const auto& [phase, seconds] : report.timings.phases())
-    if (phase != "total") timings.add(phase, seconds);
-  timings.add("total", total.seconds());
-  report.timings = timings;
+  RunOptions options;
+  options.build.max_elements = arguments.max_elements;
+  options.no_contact = arguments.no_contact;
+  const RunReport report = run_scene(scene, options);
 
   for (const std::string& warning : report.warnings) std::cerr << "contactqp: warning: " << warning << "\n";
   std::cout << summary_table(report);

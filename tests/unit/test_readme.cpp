@@ -14,3 +14,8 @@ TEST_CASE("the README shows the exact command .ci/run executes", "[unit][docs]")
   REQUIRE_FALSE(command.empty());
   CHECK(read_text(source_path("README.md")).find("    " + command + "\n") != std::string::npos);
 }
+
+TEST_CASE("the README is a door, not a book: at most 15 KB", "[unit][docs]") {
+  // The studies live in docs/ (tools/check_links.py checks that the README's links reach them).
+  CHECK(read_text(source_path("README.md")).size() <= 15u * 1024u);
+}

@@ -41,7 +41,7 @@ TEST_CASE("scenes/hertz.json matches Hertz and the independent reference force",
   REQUIRE(r.result.status == Status::Converged);
   CHECK(r.certificate.kkt_max() < 1e-7);
   CHECK(std::abs(r.certificate.relative_gap) < 1e-8);
-  // ARCHITECTURE.md: an independent FE code gives P ≈ 0.008657 E R on this geometry; a
+  // docs/architecture.md: an independent FE code gives P ≈ 0.008657 E R on this geometry; a
   // mesh graded this coarsely away from the contact stays within 1% of it.
   CHECK(r.contact.total_force == Approx(0.008657).epsilon(0.01));
   // The acceptance is 3% / 3% / 5%; this mesh does better, and a regression shows.

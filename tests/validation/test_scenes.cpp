@@ -165,7 +165,7 @@ TEST_CASE("6-node triangles reach the 3-node accuracy with a quarter of the DOFs
   const HertzComparison h1 = hertz_of(linear), h2 = hertz_of(quadratic);
   CHECK(h2.error_l2 <= h1.error_l2);
   CHECK(std::abs(h2.error_max_pressure) <= std::abs(h1.error_max_pressure));
-  // The force against the independent reference P ≈ 0.008657 (ARCHITECTURE.md).
+  // The force against the independent reference P ≈ 0.008657 (docs/architecture.md).
   CHECK(std::abs(quadratic.contact.total_force / 0.008657 - 1) <= std::abs(linear.contact.total_force / 0.008657 - 1));
   // The paper's remark: with quadratic shape functions contact is imposed at the vertices and
   // at the mid-side nodes; both carry force.

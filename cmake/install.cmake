@@ -1,0 +1,41 @@
+# `cmake --install build --prefix P`: the libraries, the public headers, a CMake package
+# (find_package(contactqp) -> contactqp::contactqp), contactqp.pc, and the CLI. The Python
+# module installs itself (python/CMakeLists.txt).
+#
+# The libraries are static archives, so their private dependencies (CHOLMOD, Gmsh, LAPACK,
+# Ipopt, NLopt) are link dependencies of whoever links them: contactqpConfig.cmake finds them
+# again the way this build did, with the two find modules installed beside it.
+include(CMakePackageConfigHelpers)
+set(CONTACTQP_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/contactqp)
+
+install(TARGETS cqp_qp cqp_solvers cqp_fe cqp_run contactqp_library
+        EXPORT contactqpTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(TARGETS contactqp RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(DIRECTORY include/contactqp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.hpp")
+install(EXPORT contactqpTargets NAMESPACE contactqp:: DESTINATION ${CONTACTQP_CMAKE_DIR})
+
+configure_package_config_file(cmake/contactqpConfig.cmake.in ${CMAKE_CURRENT_BINARY_DIR}/contactqpConfig.cmake
+                              INSTALL_DESTINATION ${CONTACTQP_CMAKE_DIR})
+write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/contactqpConfigVersion.cmake
+                                 COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/contactqpConfig.cmake ${CMAKE_CURRENT_BINARY_DIR}/contactqpConfigVersion.cmake
+              cmake/FindCholmod.cmake cmake/FindGmshLib.cmake
+        DESTINATION ${CONTACTQP_CMAKE_DIR})
+
+# pkg-config: the archives in link order, then what they need (static libraries carry no
+# dependency list of their own).
+set(CONTACTQP_PC_REQUIRES "eigen3")
+if(CONTACTQP_HAVE_IPOPT)
+  string(APPEND CONTACTQP_PC_REQUIRES " ipopt")
+endif()
+if(CONTACTQP_HAVE_NLOPT)
+  string(APPEND CONTACTQP_PC_REQUIRES " nlopt")
+endif()
+# Relocatable: the prefix is found from the .pc file's own place, so `--prefix P` at install
+# time works (libdir is lib, or lib/<multiarch> under /usr).
+string(REGEX REPLACE "[^/]+" ".." CONTACTQP_PC_TO_PREFIX "${CMAKE_INSTALL_LIBDIR}/pkgconfig")
+configure_file(cmake/contactqp.pc.in ${CMAKE_CURRENT_BINARY_DIR}/contactqp.pc @ONLY)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/contactqp.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)

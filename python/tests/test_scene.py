@@ -1,0 +1,127 @@
+"""solve_scene() and compare_scene() give the numbers of the command line's JSON."""
+import json
+import math
+import os
+import subprocess
+import threading
+
+import numpy as np
+import pytest
+
+import contactqp
+from conftest import source_path
+
+CLI = os.environ.get("CONTACTQP_CLI", "contactqp")
+HERTZ = source_path("scenes/hertz.json")
+
+# Wall times differ from run to run; everything else must agree to round-off.
+TIMING_KEYS = {"timings", "seconds", "seconds_in_linear_solves", "factorize_seconds", "linear_solve_seconds"}
+
+
+def cli_json(tmp_path, *arguments):
+    out = tmp_path / "cli.json"
+    run = subprocess.run([CLI, *arguments, "--json", str(out)], capture_output=True, text=True)
+    assert run.returncode in (0, 1), run.stderr
+    return json.loads(out.read_text()), run
+
+
+def assert_same_numbers(a, b, path=""):
+    """Every leaf equal, numbers to round-off (1e-12 relative), timings skipped."""
+    if isinstance(a, dict):
+        assert set(a) == set(b), path
+        for key in a:
+            if key not in TIMING_KEYS and not key.endswith("_seconds"):
+                assert_same_numbers(a[key], b[key], path + "." + key)
+    elif isinstance(a, list):
+        assert len(a) == len(b), path
+        for i, (x, y) in enumerate(zip(a, b)):
+            assert_same_numbers(x, y, f"{path}[{i}]")
+    elif isinstance(a, float) or isinstance(b, float):
+        assert a == pytest.approx(b, rel=1e-12, abs=1e-300), path
+    else:
+        assert a == b, path
+
+
+def test_hertz_force_b_p0_identical_to_the_cli(tmp_path, backend):
+    """The acceptance check: the Hertz scene's force, b and p0 from Python equal the CLI's JSON."""
+    expected, _ = cli_json(tmp_path, "solve", HERTZ, "--backend", backend.label, "--tol", "1e-10")
+    r = contactqp.solve_scene(HERTZ, backend=backend, tol=1e-10)
+    assert r.status.label == expected["status"] == "converged"
+    assert r.backend == backend and r.iterations == expected["iterations"]
+    assert r.contact.total_force == pytest.approx(expected["contact"]["total_force"], rel=1e-12)
+    assert r.hertz.half_width == pytest.approx(expected["hertz"]["half_width"], rel=1e-12)
+    assert r.hertz.max_pressure == pytest.approx(expected["hertz"]["max_pressure"], rel=1e-12)
+    assert r.contact.half_width == pytest.approx(expected["contact"]["half_width"], rel=1e-12)
+    assert r.contact.max_pressure == pytest.approx(expected["contact"]["max_pressure"], rel=1e-12)
+    assert r.certificate.objective == pytest.approx(expected["objective"], rel=1e-12)
+    assert (r.dofs, r.constraints, r.nodes) == (expected["dofs"], expected["constraints"], expected["nodes"])
+    # And every other number of the file, through the report's own json().
+    assert_same_numbers(json.loads(r.json()), expected)
+
+
+def test_attributes_are_numpy_and_consistent():
+    r = contactqp.solve_scene(HERTZ, backend="active_set")
+    assert isinstance(r.u, np.ndarray) and r.u.shape == (r.dofs,)
+    assert isinstance(r.lam, np.ndarray) and r.lam.shape == (r.constraints,)
+    assert np.all(r.lam >= 0)
+    # The total force is the sum of the nodal forces, doubled by the symmetry plane.
+    assert r.contact.total_force == pytest.approx(2 * r.lam.sum(), rel=1e-12)
+    assert r.displacement.shape == (2 * r.nodes,)
+    assert r.contact.profile.shape == (r.constraints, 2)
+    assert list(r.timings)[-1] == "total" and r.timings["total"] >= r.timings["mesh"]
+    assert r.reactions[0]["boundary"] == "top"
+    # The reaction on the displaced top balances the contact force.
+    assert -r.reactions[0]["force"][1] == pytest.approx(r.contact.total_force, rel=1e-8)
+    # The QP behind it, solved again from Python, gives the same answer.
+    again = contactqp.solve(r.qp, backend="active_set", tol=r.tol)
+    np.testing.assert_allclose(again.u, r.u, rtol=0, atol=1e-14 * np.abs(r.u).max())
+
+
+def test_csv_and_vtu_equal_the_cli_files(tmp_path):
+    csv, vtu = tmp_path / "p.csv", tmp_path / "m.vtu"
+    run = subprocess.run([CLI, "solve", HERTZ, "--backend", "active_set", "--csv", str(csv), "--vtu", str(vtu)],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    r = contactqp.solve_scene(HERTZ, backend="active_set")
+    assert r.csv() == csv.read_text()
+    assert r.vtu() == vtu.read_text()
+
+
+def test_no_contact_is_one_linear_solve():
+    r = contactqp.solve_scene(HERTZ, no_contact=True)
+    assert r.backend is None and r.no_contact and r.converged
+    assert np.all(r.lam == 0) and r.hertz is None
+
+
+def test_compare_scene_matches_cli_compare(tmp_path):
+    expected, run = cli_json(tmp_path, "compare", HERTZ, "--tol", "1e-10")
+    c = contactqp.compare_scene(HERTZ, tol=1e-10)
+    assert c.agree == expected["agree"] == (run.returncode == 0)
+    assert c.reference.label == expected["reference"]
+    assert [run.backend.label for run in c.runs] == [r["backend"] for r in expected["runs"]]
+    assert_same_numbers(json.loads(c.json()), expected)
+    for mine, theirs in zip(c.runs, expected["runs"]):
+        assert mine.contact.half_width == pytest.approx(theirs["half_width"], rel=1e-12)
+        assert mine.rel_diff_u == pytest.approx(theirs["rel_diff_u"], rel=1e-9, abs=1e-16)
+    pair = contactqp.compare_scene(HERTZ, backends=["active_set", contactqp.Backend.UZAWA], tol=1e-10)
+    assert [r.backend for r in pair.runs] == [contactqp.Backend.ACTIVE_SET, contactqp.Backend.UZAWA]
+    assert pair.agree and pair.max_diff_u <= pair.bound["u"]
+
+
+def test_the_gil_is_released_during_a_solve():
+    """Another Python thread runs while a scene is meshed and solved."""
+    counter = [0]
+    done = threading.Event()
+
+    def work():
+        contactqp.solve_scene(HERTZ, backend="uzawa", tol=1e-12)
+        done.set()
+
+    thread = threading.Thread(target=work)
+    thread.start()
+    while not done.is_set():
+        counter[0] += 1
+    thread.join()
+    # Holding the GIL for the ~0.2 s of the solve would leave this loop a few switch intervals
+    # (5 ms each); released, it spins freely.
+    assert counter[0] > 10000

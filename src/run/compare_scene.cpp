@@ -1,0 +1,126 @@
+// compare_scene(): one QP, several backends, the same certificate for each, and how far their
+// answers lie from each other (run.hpp). A dual method and a primal one that agree to the
+// tolerance validate each other.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "contactqp/certificate.hpp"
+#include "contactqp/cholesky.hpp"
+#include "contactqp/errors.hpp"
+#include "contactqp/run.hpp"
+#include "contactqp/solve.hpp"
+
+namespace contactqp {
+namespace {
+
+constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+
+// ‖a − b‖ / ‖b‖, or the absolute difference when b = 0.
+double relative_difference(const VectorXd& a, const VectorXd& b) {
+  const double scale = b.norm();
+  return scale > 0 ? (a - b).norm() / scale : (a - b).norm();
+}
+
+// Symmetric, for the pairwise check: ‖a − b‖ / max(‖a‖, ‖b‖).
+double symmetric_difference(const VectorXd& a, const VectorXd& b) {
+  const double scale = std::max(a.norm(), b.norm());
+  return scale > 0 ? (a - b).norm() / scale : 0.0;
+}
+
+bool converged(const BackendRun& run) { return run.result.status == Status::Converged; }
+
+// The converged run with the smallest certified |relative gap|; the run with a certificate
+// otherwise. -1 when no run has a dual objective to compare.
+int choose_reference(const std::vector<BackendRun>& runs) {
+  int best = -1;
+  auto better = [&](int i) {
+    if (!runs[i].certificate.dual_available) return false;
+    if (best < 0) return true;
+    if (converged(runs[i]) != converged(runs[best])) return converged(runs[i]);
+    return std::abs(runs[i].certificate.relative_gap) < std::abs(runs[best].certificate.relative_gap);
+  };
+  for (int i = 0; i < static_cast<int>(runs.size()); ++i)
+    if (better(i)) best = i;
+  return best;
+}
+
+}  // namespace
+
+Agreement agreement_for(double tol) { return {1e4 * tol, 1e5 * tol, 1e2 * tol}; }
+
+CompareReport compare_scene(const Scene& scene, const CompareOptions& options) {
+  Stopwatch total;
+  const std::vector<Backend> backends = options.backends.empty() ? available_backends() : options.backends;
+  std::vector<SolveOptions> solve_options;
+  for (Backend backend : backends) {
+    solve_options.push_back(scene.solver);
+    solve_options.back().backend = backend;
+    validate_options(solve_options.back());
+  }
+
+  CompareReport report;
+  auto model = std::make_shared<Model>(build_model(scene, options.build));
+  auto qp = std::make_shared<QuadraticProgram>(assemble_qp(*model));
+  report.model = model;
+  report.qp = qp;
+  report.tol = scene.solver.tol;
+  report.warnings = model->warnings;
+
+  // The unit of cost (docs/architecture.md): one factorisation of K and one solve with it.
+  // The same factor certifies every run, so that all are judged by the same numbers.
+  Stopwatch clock;
+  const CholeskyFactor K_factor(qp->K);
+  report.factorize_seconds = clock.seconds();
+  report.linear_solve_seconds = K_factor.ok() ? std::numeric_limits<double>::infinity() : kNone;
+  for (int k = 0; k < 5 && K_factor.ok(); ++k) {  // the fastest of a few: the first one warms caches
+    clock.restart();
+    K_factor.solve(qp->f);
+    report.linear_solve_seconds = std::min(report.linear_solve_seconds, clock.seconds());
+  }
+
+  // Each backend from scratch (its own factorisation included), so that the times compare.
+  for (const SolveOptions& run_options : solve_options) {
+    BackendRun run;
+    run.backend = run_options.backend;
+    run.result = solve(*qp, run_options);
+    run.result.K_factor.reset();  // a factor per backend is memory the next one may need
+    run.certificate = certify(*qp, run.result.u, run.result.lambda, &K_factor);
+    run.contact = summarize_contact(*model, *qp, run.result.u, run.result.lambda);
+    report.runs.push_back(std::move(run));
+  }
+
+  std::vector<BackendRun>& runs = report.runs;
+  report.reference = choose_reference(runs);
+  if (report.reference >= 0)
+    for (BackendRun& run : runs) {
+      run.rel_diff_u = relative_difference(run.result.u, runs[report.reference].result.u);
+      run.rel_diff_lambda = relative_difference(run.result.lambda, runs[report.reference].result.lambda);
+    }
+
+  // Agreement only when every run converged, every certified gap is small and every pair agrees.
+  report.bound = agreement_for(scene.solver.tol);
+  report.all_converged = true;
+  for (size_t i = 0; i < runs.size(); ++i) {
+    report.all_converged = report.all_converged && converged(runs[i]) && runs[i].certificate.dual_available;
+    report.max_gap = std::max(report.max_gap, std::abs(runs[i].certificate.relative_gap));
+    for (size_t j = 0; j < i; ++j) {
+      report.max_diff_u = std::max(report.max_diff_u, symmetric_difference(runs[i].result.u, runs[j].result.u));
+      report.max_diff_lambda =
+          std::max(report.max_diff_lambda, symmetric_difference(runs[i].result.lambda, runs[j].result.lambda));
+    }
+  }
+  report.agree = report.all_converged && report.max_diff_u <= report.bound.u &&
+                 report.max_diff_lambda <= report.bound.lambda && report.max_gap <= report.bound.gap;
+
+  report.timings.add("mesh", model->timings.get("mesh"));
+  report.timings.add("assemble", model->timings.get("assemble"));
+  report.timings.add("total", total.seconds());
+  return report;
+}
+
+CompareReport compare_scene(const std::string& scene_path, const CompareOptions& options) {
+  return compare_scene(load_scene(scene_path), options);
+}
+
+}  // namespace contactqp

@@ -1,0 +1,57 @@
+// run_scene(): one scene from model to post-processed report (run.hpp).
+#include "contactqp/certificate.hpp"
+#include "contactqp/errors.hpp"
+#include "contactqp/run.hpp"
+#include "contactqp/solve.hpp"
+
+namespace contactqp {
+
+RunReport run_scene(const Scene& scene, const RunOptions& options) {
+  Stopwatch total;
+  validate_options(scene.solver);  // backend options too, before the mesh is built
+
+  auto model = std::make_shared<Model>(build_model(scene, options.build));
+  auto qp = std::make_shared<QuadraticProgram>(assemble_qp(*model));
+
+  RunReport report;
+  report.model = model;
+  report.qp = qp;
+  report.options = scene.solver;
+  report.options.observer = nullptr;  // a callback is not data: the report must not keep the caller's closure alive
+  report.no_contact = options.no_contact;
+  report.result = options.no_contact ? solve_without_contact(*qp, scene.solver) : solve(*qp, scene.solver);
+
+  Stopwatch clock;
+  report.certificate = certify(*qp, report.result.u, report.result.lambda, report.result.K_factor.get());
+  report.timings.merge(model->timings);
+  report.timings.merge(report.result.timings);
+  report.timings.add("certify", clock.seconds());
+  clock.restart();
+  report.contact = summarize_contact(*model, *qp, report.result.u, report.result.lambda);
+  if (!report.no_contact) {
+    report.hertz = compare_with_hertz(*model, report.contact);
+    report.boussinesq = compare_with_boussinesq(*model, report.contact);
+  }
+  report.reactions = reactions(*model, *qp, report.result.u, report.result.lambda);
+  report.timings.add("postprocess", clock.seconds());
+
+  report.warnings = model->warnings;
+  if (report.contact.penetrating_non_candidates > 0 && !report.no_contact)
+    report.warnings.push_back(std::to_string(report.contact.penetrating_non_candidates) +
+                              " boundary nodes outside the candidate set penetrate an obstacle (by up to " +
+                              detail::format_value(report.contact.max_non_candidate_penetration) +
+                              "); raise contact.max_gap");
+  // "total" is the whole run: the backend's own total stays under its name in the registry.
+  Timings timings;
+  for (const auto& [phase, seconds] : report.timings.phases())
+    if (phase != "total") timings.add(phase, seconds);
+  timings.add("total", total.seconds());
+  report.timings = timings;
+  return report;
+}
+
+RunReport run_scene(const std::string& scene_path, const RunOptions& options) {
+  return run_scene(load_scene(scene_path), options);
+}
+
+}  // namespace contactqp
