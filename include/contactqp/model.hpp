@@ -79,7 +79,7 @@ Eigen::MatrixXd elasticity_matrix(ElasticModel model, const Material& material);
 Eigen::MatrixXd element_stiffness(const Eigen::Vector2d* nodes, int order, const Eigen::Matrix3d& D,
                                   double thickness);
 
-// What an element's energy is, by body.formulation (README: "Nearly incompressible bodies").
+// What an element's energy is, by body.formulation (docs/incompressible.md).
 // Displacement: ½ ∫ εᵀ D ε. Mixed (plane strain): the elasticity matrix split as
 // D = D_dev + k m mᵀ (m = [1, 1, 0], k = λ + 2μ/3 the bulk modulus, D_dev independent of λ),
 // with the volumetric part seen only through the element mean of tr ε — an element-wise

@@ -39,7 +39,7 @@ struct ObstacleContact {
   double half_width_last_node = 0;  // 2D: |s − s̄| of the farthest node carrying force
   double centre = 0;                // 2D: s̄, the centre of pressure (0 with symmetry)
   // 3D: the moment estimate a = sqrt(5/2 · Σλ r² / Σλ) (exact for a Hertz pressure, whose
-  // <r²> over the disc is 2a²/5), the r of the farthest node carrying force, the loaded area
+  // mean r² over the disc is 2a²/5), the r of the farthest node carrying force, the loaded area
   // (Σ w_i over the nodes carrying force, for the whole body) and the centre of pressure.
   double contact_radius = 0;
   double contact_radius_last_node = 0;

@@ -39,7 +39,7 @@ int dimension(ElasticModel model);  // 2 or 3
 // How the strain energy is discretised (body.formulation). Displacement: the standard
 // displacement formulation. Mixed: 6-node triangles with an element-wise constant mean stress
 // condensed out per element (P2–P0), which does not lock as ν → 0.5 (plane strain only;
-// README: "Nearly incompressible bodies").
+// docs/incompressible.md).
 enum class Formulation { Displacement, Mixed };
 
 struct Material {

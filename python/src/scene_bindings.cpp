@@ -167,6 +167,14 @@ void bind_scene(py::module_& m) {
                " p0=" + detail::format_value(h.max_pressure) + ">";
       });
 
+  py::class_<PunchComparison>(m, "PunchComparison", "Boussinesq's flat punch: P = 2 a E* delta, and the errors against it (3D).")
+      .def_readonly("radius", &PunchComparison::radius, "the punch radius a")
+      .def_readonly("approach", &PunchComparison::approach, "delta, the prescribed approach")
+      .def_readonly("effective_modulus", &PunchComparison::effective_modulus, "E* = E/(1 - nu^2)")
+      .def_readonly("force", &PunchComparison::force, "Boussinesq's P = 2 a E* delta")
+      .def_readonly("error_force", &PunchComparison::error_force, "(P_computed - P) / P")
+      .def_readonly("shape_error", &PunchComparison::shape_error, "max |p(r) 2 pi a sqrt(a^2 - r^2) / P - 1| for r <= 0.8 a");
+
   py::class_<ContactView>(m, "ContactResult", "The contact of a solved scene: force, half-width, pressure, profile.")
       .def_property_readonly("total_force", [](const ContactView& v) { return v.summary.total_force; }, "sum of nodal contact forces (doubled with symmetry)")
       .def_property_readonly("line_load", [](const ContactView& v) { return v.summary.line_load; }, "total_force / thickness")
@@ -213,6 +221,8 @@ element_order, warnings; json(), csv(), vtu() give the output files' text.)")
       .def_property_readonly("diagnostics", [](const RunReport& r) { return r.result.diagnostics; })
       .def_property_readonly("contact", [](const RunReport& r) { return ContactView{r.model, r.contact}; })
       .def_property_readonly("hertz", [](const RunReport& r) { return hertz_object(r.hertz); })
+      .def_property_readonly("boussinesq", [](const RunReport& r) { return r.boussinesq ? py::cast(*r.boussinesq) : py::none(); },
+                             "Boussinesq's comparison for a scene pressed by a flat punch, else None")
       .def_property_readonly("reactions", [](const RunReport& r) { return reactions_list(r.reactions, r.model->dim); })
       .def_property_readonly("dofs", [](const RunReport& r) { return r.qp->n_dofs(); })
       .def_property_readonly("constraints", [](const RunReport& r) { return r.qp->n_constraints(); })

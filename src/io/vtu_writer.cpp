@@ -83,7 +83,6 @@ ContactFields contact_fields(const RunReport& report, const Eigen::VectorXd& dis
   const QuadraticProgram& qp = *report.qp;
   const int n = model.mesh.n_nodes();
   const int dim = model.dim;
-  const double thickness = dim == 2 ? model.scene.body.thickness : 1.0;
   ContactFields fields{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(dim * n), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
   const Eigen::VectorXd& lambda = report.result.lambda;
   const Eigen::VectorXd slack = qp.g - qp.B * report.result.u;

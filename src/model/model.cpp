@@ -17,7 +17,7 @@ namespace {
 constexpr double kLoadGapFactor = 1.5;
 
 // Above these Poisson's ratios the displacement formulation's error from locking shows at
-// the percent level on Hertz's problem (README: "Nearly incompressible bodies").
+// the percent level on Hertz's problem (docs/incompressible.md).
 constexpr double kLinearLockingNu = 0.45;
 constexpr double kQuadraticLockingNu = 0.49;
 
