@@ -38,7 +38,9 @@ Eigen::Vector3d read_vector(const json& value, const std::string& path, int dim)
 
 Eigen::Vector3d read_direction(const json& value, const std::string& path, int dim) {
   const Eigen::Vector3d d = read_vector(value, path, dim);
-  const double length = d.norm();
+  double length = d.norm();
+  // Components near the largest double overflow the plain norm; the scaled one does not.
+  if (!std::isfinite(length)) length = d.stableNorm();
   if (!(length > 0)) throw InputError(path, "= " + describe(value) + ": must be a non-zero vector");
   return d / length;
 }
