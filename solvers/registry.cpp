@@ -12,12 +12,23 @@
 namespace contactqp {
 namespace detail {
 
-std::shared_ptr<const CholeskyFactor> factor_of_K(const QuadraticProgram& qp,
-                                                  const SolveOptions& options, Timings& timings,
-                                                  std::string& message) {
+LinearSolverOptions linear_solver_options(const QuadraticProgram& qp, const SolveOptions& options) {
+  LinearSolverOptions settings;
+  settings.kind = options.linear_solver;
+  settings.ordering = options.ordering;
+  settings.tol = options.tol;
+  settings.petsc_options = options.petsc_options;
+  settings.near_null_space = qp.near_null_space;
+  settings.verbose = options.verbose;
+  return settings;
+}
+
+std::shared_ptr<const LinearSolver> factor_of_K(const QuadraticProgram& qp,
+                                                const SolveOptions& options, Timings& timings,
+                                                std::string& message) {
   if (options.K_factor) return options.K_factor;
   Stopwatch clock;
-  auto factor = std::make_shared<const CholeskyFactor>(qp.K, options.ordering);
+  std::shared_ptr<const LinearSolver> factor = make_linear_solver(qp.K, linear_solver_options(qp, options));
   timings.add("factorize", clock.seconds());
   if (!factor->ok()) {
     message = "the stiffness matrix K could not be factorised: " + factor->message() +
@@ -50,6 +61,8 @@ void validate_options(const SolveOptions& options) {
           "must be positive");
   require(backend_available(options.backend), "backend", to_string(options.backend),
           "was not built into this copy of contactqp");
+  require(linear_solver_available(options.linear_solver), "linear_solver", to_string(options.linear_solver),
+          "was not built into this copy of contactqp (PETSc absent at configure time)");
   switch (options.backend) {
     case Backend::Uzawa:
     case Backend::UzawaAccelerated:

@@ -268,6 +268,7 @@ void add_compare_command(CLI::App& app, int& exit_status) {
       command->add_option("--max-iterations", solve.max_iterations, "Iteration limit of every backend (default 10000)");
   command->add_option("--json", solve.json_path, "Write the comparison JSON here");
   command->add_option("--max-elements", solve.max_elements, "Refuse meshes with more triangles (default 4000000)");
+  add_linear_solver_options(*command, solve);
   command->add_option("--backend-option", solve.backend_options,
                       "key=value for every backend, or ipopt.key=value / nlopt.key=value for one (repeatable)");
   command->callback([arguments, tol, max_iterations, &exit_status] {
