@@ -30,4 +30,8 @@ std::shared_ptr<const LinearSolver> factor_of_K(const QuadraticProgram& qp,
                                                   const SolveOptions& options, Timings& timings,
                                                   std::string& message);
 
+// The solver of K's Krylov iterations and solves into result.diagnostics (iterative solvers
+// only: "krylov_iterations", "linear_solves") and its warnings into result.warnings.
+void report_linear_solver(SolveResult& result);
+
 }  // namespace contactqp::detail

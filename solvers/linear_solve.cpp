@@ -28,6 +28,7 @@ SolveResult solve_without_contact(const QuadraticProgram& qp, const SolveOptions
   } else {
     result.u = VectorXd::Zero(qp.n_dofs());
   }
+  detail::report_linear_solver(result);
   if (options.scale) detail::unscale_result(result, scaling);
   result.timings.add("total", clock.seconds());
   return result;

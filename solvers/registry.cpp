@@ -31,11 +31,24 @@ std::shared_ptr<const LinearSolver> factor_of_K(const QuadraticProgram& qp,
   std::shared_ptr<const LinearSolver> factor = make_linear_solver(qp.K, linear_solver_options(qp, options));
   timings.add("factorize", clock.seconds());
   if (!factor->ok()) {
-    message = "the stiffness matrix K could not be factorised: " + factor->message() +
-              " (is the body restrained against rigid motion?)";
+    message = options.linear_solver == LinearSolverKind::Cholmod
+                  ? "the stiffness matrix K could not be factorised: " + factor->message() +
+                        " (is the body restrained against rigid motion?)"
+                  : "the " + to_string(options.linear_solver) + " solver of K could not be set up: " + factor->message();
     return nullptr;
   }
   return factor;
+}
+
+void report_linear_solver(SolveResult& result) {
+  if (!result.K_factor) return;
+  // An iterative solver of K: its inner (Krylov) iterations and solves since its set-up.
+  const LinearSolverStatistics statistics = result.K_factor->statistics();
+  if (statistics.iterations > 0) {
+    result.diagnostics["krylov_iterations"] = static_cast<double>(statistics.iterations);
+    result.diagnostics["linear_solves"] = static_cast<double>(statistics.solves);
+  }
+  for (const std::string& warning : result.K_factor->warnings()) result.warnings.push_back(warning);
 }
 
 namespace {
@@ -128,6 +141,7 @@ SolveResult solve(const QuadraticProgram& qp, const SolveOptions& options) {
     result.lambda = VectorXd::Zero(qp.n_constraints());
   }
   detail::zero_separated_multipliers(qp, result, options.tol);
+  detail::report_linear_solver(result);
   // A diagnostic that is not finite (ρ_max with no constraints) is absent, not Inf.
   for (auto it = result.diagnostics.begin(); it != result.diagnostics.end();)
     it = std::isfinite(it->second) ? std::next(it) : result.diagnostics.erase(it);

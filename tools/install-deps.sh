@@ -3,12 +3,15 @@
 # Debian bookworm). Skips apt entirely when everything is already installed. clang and
 # libclang-rt-dev (compiler-rt: libFuzzer and clang's sanitizer runtimes) build the scene
 # parser's fuzzer; g++'s own sanitizer runtimes (libasan8, libubsan1) come with g++.
+# petsc-dev (PETSc 3.18 with MUMPS and hypre) and OpenMPI: the optional PETSc solver of K
+# (docs/linear-solvers.md); the build works without them.
 set -eu
 packages="cmake g++ make pkg-config
   libeigen3-dev libsuitesparse-dev libopenblas-dev
   coinor-libipopt-dev libnlopt-cxx-dev
   catch2 nlohmann-json3-dev libcli11-dev
   libgmsh-dev gmsh
+  petsc-dev openmpi-bin libopenmpi-dev
   clang libclang-rt-dev
   python3 python3-numpy python3-matplotlib python3-vtk9 python3-getfem"
 missing=""

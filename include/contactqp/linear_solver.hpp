@@ -109,6 +109,12 @@ struct LinearSolverOptions {
   bool verbose = false;  // let the library print its own log
 };
 
+// With PETSc built in, the process holds two MUMPS builds, Ipopt's sequential one and PETSc's
+// MPI one, and the dynamic linker binds every MUMPS call to the first loaded, the MPI build,
+// which aborts unless MPI is running. Starts PETSc (and so MPI) once, with `petsc_options` as
+// its command line if it is the first PETSc use; a no-op without PETSc. Ipopt calls it.
+void start_petsc_runtime(const std::string& petsc_options = "");
+
 // Sets up a solver of A (symmetric positive definite; both triangles stored) of the chosen
 // kind. Never throws on a numerical failure (check ok()); throws InputError when the kind was
 // not built into this copy of contactqp or its options are bad input.

@@ -134,6 +134,8 @@ struct SolveResult {
   int iterations = 0;
   Timings timings;                                 // seconds per phase ("factorize", "solve", ...)
   std::map<std::string, double> diagnostics;       // named extras: "rho", "rho_max", ...
+  // Not failures, but worth telling the user: e.g. a PETSc option nothing read.
+  std::vector<std::string> warnings;
   // The solver of K the backend used, if any: reuse it for certify() or further solves.
   std::shared_ptr<const LinearSolver> K_factor;
 };

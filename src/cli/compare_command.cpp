@@ -161,6 +161,12 @@ int run_compare(const CompareArguments& arguments) {
     runs.push_back(std::move(run));
   }
 
+  // The same solver warnings (an unused PETSc option) would repeat for every backend: once each.
+  std::set<std::string> warned;
+  for (const Run& run : runs)
+    for (const std::string& warning : run.result.warnings)
+      if (warned.insert(warning).second) std::cerr << "contactqp: warning: " << warning << "\n";
+
   const int reference = choose_reference(runs);
   if (reference >= 0)
     for (Run& run : runs) {

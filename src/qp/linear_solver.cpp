@@ -95,6 +95,8 @@ Condensation LinearSolver::condense(const Eigen::SparseMatrix<double>& C, const 
   return out;
 }
 
+void start_petsc_runtime(const std::string& petsc_options) { detail::start_petsc_runtime(petsc_options); }
+
 std::shared_ptr<const LinearSolver> make_linear_solver(const Eigen::SparseMatrix<double>& A,
                                                        const LinearSolverOptions& options) {
   switch (options.kind) {

@@ -9,6 +9,7 @@
 namespace contactqp::detail {
 
 bool petsc_available();
+void start_petsc_runtime(const std::string& options);
 
 // A KSP on a PETSc copy of A (docs/linear-solvers.md). Throws InputError when the PETSc
 // options are bad input that PETSc reports before any work; numerical failures go to ok().

@@ -7,6 +7,8 @@ namespace contactqp::detail {
 
 bool petsc_available() { return false; }
 
+void start_petsc_runtime(const std::string&) {}  // Ipopt's sequential MUMPS is the only one
+
 std::shared_ptr<const LinearSolver> make_petsc_solver(const Eigen::SparseMatrix<double>&, const LinearSolverOptions&) {
   throw InputError("linear_solver", "= \"petsc\": PETSc was not built into this copy of contactqp");
 }
