@@ -25,7 +25,14 @@ void apply_overrides(const SolveArguments& arguments, SolveOptions& options) {
   if (!arguments.ordering.empty()) options.ordering = parse_ordering(arguments.ordering, "--ordering");
   if (!arguments.linear_solver.empty())
     options.linear_solver = parse_linear_solver(arguments.linear_solver, "--linear-solver");
-  if (arguments.petsc_options_given) options.petsc_options = arguments.petsc_options;
+  if (arguments.petsc_options_given) {
+    // "--petsc-options= --verbose" hands CLI11 an empty value and it takes the next argument
+    // instead: a value that starts with "--" is one of ours, not PETSc's.
+    if (arguments.petsc_options.rfind("--", 0) == 0)
+      throw InputError("--petsc-options", "= \"" + arguments.petsc_options +
+                                              "\": is a contactqp option, not PETSc's; write --petsc-options=\"-ksp_type cg\"");
+    options.petsc_options = arguments.petsc_options;
+  }
   add_backend_options(arguments.backend_options, options);
 }
 

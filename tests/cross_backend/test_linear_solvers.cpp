@@ -171,6 +171,10 @@ TEST_CASE("the CLI passes PETSc options through, reads PETSC_OPTIONS, and ends P
   CHECK(bad.exit_status == 2);
   CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
   CHECK_THAT(bad.err, Catch::Matchers::Contains("petsc_options"));
+  // An empty value makes CLI11 take the next argument: one of ours is refused, not passed on.
+  const CliRun swallowed = run_cli("solve " + scene + " --linear-solver petsc --petsc-options= --verbose");
+  CHECK(swallowed.exit_status == 2);
+  CHECK_THAT(swallowed.err, Catch::Matchers::Contains("--petsc-options = \"--verbose\""));
   // compare takes the options too, and reports an unused option once.
   const CliRun compare = run_cli("compare " + scene +
                                  " --backends uzawa_accel,active_set --linear-solver petsc --petsc-options=\"-no_such_thing 1\"");
