@@ -72,7 +72,7 @@ SolveResult solve_active_set(const QuadraticProgram& qp, const SolveOptions& opt
 
   result.K_factor = factor_of_K(qp, options, result.timings, result.message);
   if (!result.K_factor) return result;
-  const CholeskyFactor& K_factor = *result.K_factor;
+  const LinearSolver& K_factor = *result.K_factor;
 
   // Condense. Dense S when it fits, else S v = B K⁻¹ Bᵀ v matrix-free.
   Stopwatch clock;
@@ -159,6 +159,11 @@ SolveResult solve_active_set(const QuadraticProgram& qp, const SolveOptions& opt
            " MiB, over the limit of " + short_number(settings.max_dense_bytes / 1048576.0) + " MiB";
   if (lcp_result.cycle_detected) how += "; the active-set steps cycled and projected Newton finished";
   if (measured_with_u) how += "; residual measured with the recovered u, as the iteration's bound ‖Bu‖∞ was round-off";
+  if (!K_factor.ok()) {
+    result.status = Status::NumericalError;
+    result.message = "a solve with K failed (" + how + "): " + K_factor.message();
+    return result;
+  }
   switch (outcome) {
     case LcpOutcome::Converged:
       result.status = Status::Converged;

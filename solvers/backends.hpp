@@ -5,7 +5,7 @@
 
 #include <memory>
 
-#include "contactqp/cholesky.hpp"
+#include "contactqp/linear_solver.hpp"
 #include "contactqp/qp.hpp"
 
 namespace contactqp::detail {
@@ -22,11 +22,16 @@ void check_nlopt_options(const SolveOptions& options);
 void check_active_set_options(const SolveOptions& options);
 SolveResult solve_active_set(const QuadraticProgram& qp, const SolveOptions& options);
 
-// The factorisation of qp.K a CHOLMOD-based backend works with: options.K_factor when the
-// caller supplied one, otherwise a fresh one whose analyse + factorise time is recorded in
-// timings as "factorize". Null with `message` set when K is not positive definite.
-std::shared_ptr<const CholeskyFactor> factor_of_K(const QuadraticProgram& qp,
+// The solver of qp.K a backend works with: options.K_factor when the caller supplied one,
+// otherwise a fresh one of the kind options.linear_solver names (inner tolerance from
+// options.tol, near-null space from qp), whose set-up time is recorded in timings as
+// "factorize". Null with `message` set when the set-up failed (K not positive definite, ...).
+std::shared_ptr<const LinearSolver> factor_of_K(const QuadraticProgram& qp,
                                                   const SolveOptions& options, Timings& timings,
                                                   std::string& message);
+
+// The solver of K's Krylov iterations and solves into result.diagnostics (iterative solvers
+// only: "krylov_iterations", "linear_solves") and its warnings into result.warnings.
+void report_linear_solver(SolveResult& result);
 
 }  // namespace contactqp::detail

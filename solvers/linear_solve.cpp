@@ -22,11 +22,13 @@ SolveResult solve_without_contact(const QuadraticProgram& qp, const SolveOptions
     result.u = result.K_factor->solve(scaled.f);
     result.timings.add("solve", solve_clock.seconds());
     result.iterations = 1;
-    result.status = Status::Converged;
-    result.message = "linear solve of K u = f with the contact rows dropped (--no-contact)";
+    result.status = result.K_factor->ok() ? Status::Converged : Status::NumericalError;
+    result.message = result.K_factor->ok() ? "linear solve of K u = f with the contact rows dropped (--no-contact)"
+                                           : "the solve with K failed: " + result.K_factor->message();
   } else {
     result.u = VectorXd::Zero(qp.n_dofs());
   }
+  detail::report_linear_solver(result);
   if (options.scale) detail::unscale_result(result, scaling);
   result.timings.add("total", clock.seconds());
   return result;

@@ -82,7 +82,7 @@ NloptOptions effective_options(const SolveOptions& options) {
 // Everything one evaluation of the dual needs, and the best point seen so far.
 class Dual {
  public:
-  Dual(const QuadraticProgram& qp, const CholeskyFactor& K_factor, const SolveOptions& options)
+  Dual(const QuadraticProgram& qp, const LinearSolver& K_factor, const SolveOptions& options)
       : qp_(qp), K_factor_(K_factor), options_(options) {}
 
   struct Point {
@@ -94,7 +94,9 @@ class Dual {
   // relative, the largest of them: the stopping rule's residual.
   Point evaluate(const VectorXd& lambda) {
     ++evaluations;
-    const VectorXd u = K_factor_.solve(VectorXd(qp_.f - qp_.B.transpose() * lambda));
+    // Warm-started from the last evaluation's u (an iterative solver of K then starts close).
+    const VectorXd u = K_factor_.solve(VectorXd(qp_.f - qp_.B.transpose() * lambda), last_u_);
+    last_u_ = u;
     Point point{lambda, qp_.B * u - qp_.g};
     const double F = force_scale(qp_, u, lambda), L = length_scale(qp_, u);
     const double violation = point.r.size() ? std::max(0.0, point.r.maxCoeff()) : 0.0;
@@ -131,6 +133,7 @@ class Dual {
   }
 
   double tol() const { return options_.tol; }
+  bool solver_ok() const { return K_factor_.ok(); }
 
   int evaluations = 0;
   Point best, origin;
@@ -139,8 +142,9 @@ class Dual {
 
  private:
   const QuadraticProgram& qp_;
-  const CholeskyFactor& K_factor_;
+  const LinearSolver& K_factor_;
   const SolveOptions& options_;
+  VectorXd last_u_;  // empty before the first evaluation: no guess
 };
 
 // How one NLopt run ended, as NLopt's result code (exceptions of the C++ API included).
@@ -249,6 +253,7 @@ SolveResult solve_nlopt(const QuadraticProgram& qp, const SolveOptions& options)
           const Dual::Point point = dual.evaluate(Eigen::Map<const VectorXd>(x, n));
           if (gradient) Eigen::Map<VectorXd>(gradient, n) = -dual.scale * point.r;  // ∇(−θ)
           if (point.residual <= dual.tol() && dual.optimizer) dual.optimizer->force_stop();  // our rule is met
+          if (!dual.solver_ok() && dual.optimizer) dual.optimizer->force_stop();  // a solve with K failed
           return dual.objective(point);
         },
         &dual);
@@ -271,7 +276,11 @@ SolveResult solve_nlopt(const QuadraticProgram& qp, const SolveOptions& options)
   result.iterations = dual.evaluations;
   result.diagnostics["nlopt_runs"] = runs;
   const std::string algorithm = name_of(settings.algorithm);
-  if (converged) {
+  if (!result.K_factor->ok()) {
+    result.status = Status::NumericalError;
+    result.message = algorithm + " on the dual stopped after " + std::to_string(dual.evaluations) +
+                     " evaluations: a solve with K failed: " + result.K_factor->message();
+  } else if (converged) {
     result.status = Status::Converged;
     result.message = "converged: " + algorithm + " on the dual; primal violation, complementarity and duality gap below " +
                      short_number(options.tol) + " after " + std::to_string(dual.evaluations) + " evaluations";

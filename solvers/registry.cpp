@@ -12,19 +12,43 @@
 namespace contactqp {
 namespace detail {
 
-std::shared_ptr<const CholeskyFactor> factor_of_K(const QuadraticProgram& qp,
-                                                  const SolveOptions& options, Timings& timings,
-                                                  std::string& message) {
+LinearSolverOptions linear_solver_options(const QuadraticProgram& qp, const SolveOptions& options) {
+  LinearSolverOptions settings;
+  settings.kind = options.linear_solver;
+  settings.ordering = options.ordering;
+  settings.tol = options.tol;
+  settings.petsc_options = options.petsc_options;
+  settings.near_null_space = qp.near_null_space;
+  settings.verbose = options.verbose;
+  return settings;
+}
+
+std::shared_ptr<const LinearSolver> factor_of_K(const QuadraticProgram& qp,
+                                                const SolveOptions& options, Timings& timings,
+                                                std::string& message) {
   if (options.K_factor) return options.K_factor;
   Stopwatch clock;
-  auto factor = std::make_shared<const CholeskyFactor>(qp.K, options.ordering);
+  std::shared_ptr<const LinearSolver> factor = make_linear_solver(qp.K, linear_solver_options(qp, options));
   timings.add("factorize", clock.seconds());
   if (!factor->ok()) {
-    message = "the stiffness matrix K could not be factorised: " + factor->message() +
-              " (is the body restrained against rigid motion?)";
+    message = options.linear_solver == LinearSolverKind::Cholmod
+                  ? "the stiffness matrix K could not be factorised: " + factor->message() +
+                        " (is the body restrained against rigid motion?)"
+                  : "the " + to_string(options.linear_solver) + " solver of K could not be set up: " + factor->message();
     return nullptr;
   }
   return factor;
+}
+
+void report_linear_solver(SolveResult& result) {
+  if (!result.K_factor) return;
+  // An iterative solver of K: its inner (Krylov) iterations and solves since its set-up.
+  const LinearSolverStatistics statistics = result.K_factor->statistics();
+  if (statistics.iterations > 0) {
+    result.diagnostics["krylov_iterations"] = static_cast<double>(statistics.iterations);
+    result.diagnostics["linear_solves"] = static_cast<double>(statistics.solves);
+  }
+  for (const std::string& warning : result.K_factor->warnings()) result.warnings.push_back(warning);
 }
 
 namespace {
@@ -50,6 +74,8 @@ void validate_options(const SolveOptions& options) {
           "must be positive");
   require(backend_available(options.backend), "backend", to_string(options.backend),
           "was not built into this copy of contactqp");
+  require(linear_solver_available(options.linear_solver), "linear_solver", to_string(options.linear_solver),
+          "was not built into this copy of contactqp (PETSc absent at configure time)");
   switch (options.backend) {
     case Backend::Uzawa:
     case Backend::UzawaAccelerated:
@@ -123,6 +149,7 @@ SolveResult solve(const QuadraticProgram& qp, const SolveOptions& options) {
     result.lambda = VectorXd::Zero(qp.n_constraints());
   }
   detail::zero_separated_multipliers(qp, result, options.tol);
+  detail::report_linear_solver(result);
   // A diagnostic that is not finite (ρ_max with no constraints) is absent, not Inf.
   for (auto it = result.diagnostics.begin(); it != result.diagnostics.end();)
     it = std::isfinite(it->second) ? std::next(it) : result.diagnostics.erase(it);

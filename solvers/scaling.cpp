@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "contactqp/cholesky.hpp"
+#include "contactqp/linear_solver.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -35,6 +35,7 @@ QuadraticProgram scaled_qp(const QuadraticProgram& qp, const QpScaling& scaling)
   scaled.B = qp.B;
   scaled.g = qp.g / scaling.displacement;
   scaled.rows = qp.rows;
+  scaled.near_null_space = qp.near_null_space;  // directions: unchanged by the scaling of K
   return scaled;
 }
 

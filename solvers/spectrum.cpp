@@ -26,7 +26,7 @@ constexpr int kSettleWindow = 5;
 
 }  // namespace
 
-SpectrumEstimate estimate_spectrum(const QuadraticProgram& qp, const CholeskyFactor& K_factor,
+SpectrumEstimate estimate_spectrum(const QuadraticProgram& qp, const LinearSolver& K_factor,
                                    const std::vector<int>& rows, int max_steps, double rel_tol_max,
                                    double rel_tol_min) {
   SpectrumEstimate estimate;
@@ -86,7 +86,7 @@ SpectrumEstimate estimate_spectrum(const QuadraticProgram& qp, const CholeskyFac
   return estimate;
 }
 
-SpectrumEstimate estimate_lambda_max(const QuadraticProgram& qp, const CholeskyFactor& K_factor) {
+SpectrumEstimate estimate_lambda_max(const QuadraticProgram& qp, const LinearSolver& K_factor) {
   return estimate_spectrum(qp, K_factor);
 }
 

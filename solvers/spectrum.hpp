@@ -1,11 +1,11 @@
 // Spectrum estimates of the condensed contact operator S = B K⁻¹ Bᵀ (m × m, symmetric
-// positive semidefinite), applied matrix-free: S v = B (K⁻¹ (Bᵀ v)), one solve with the
-// CHOLMOD factor of K per application. S is never formed.
+// positive semidefinite), applied matrix-free: S v = B (K⁻¹ (Bᵀ v)), one solve with K
+// (its LinearSolver) per application. S is never formed.
 #pragma once
 
 #include <vector>
 
-#include "contactqp/cholesky.hpp"
+#include "contactqp/linear_solver.hpp"
 #include "contactqp/qp.hpp"
 
 namespace contactqp::detail {
@@ -24,11 +24,11 @@ struct SpectrumEstimate {
 // λ_min from above; the iteration stops when, over the last few steps, λ_max has changed by
 // less than `rel_tol_max` and λ_min by less than `rel_tol_min` (relative), when the Krylov
 // space becomes invariant (exact at |R| steps), or after `max_steps` products.
-SpectrumEstimate estimate_spectrum(const QuadraticProgram& qp, const CholeskyFactor& K_factor,
+SpectrumEstimate estimate_spectrum(const QuadraticProgram& qp, const LinearSolver& K_factor,
                                    const std::vector<int>& rows = {}, int max_steps = 400,
                                    double rel_tol_max = 1e-6, double rel_tol_min = 1e-3);
 
 // λ_max(S) on every row (kept for callers that need only the bound ρ < 2/λ_max(S)).
-SpectrumEstimate estimate_lambda_max(const QuadraticProgram& qp, const CholeskyFactor& K_factor);
+SpectrumEstimate estimate_lambda_max(const QuadraticProgram& qp, const LinearSolver& K_factor);
 
 }  // namespace contactqp::detail

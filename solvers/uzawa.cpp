@@ -18,7 +18,9 @@ UzawaRun plain_loop(const UzawaContext& context, const UzawaStep& step, int firs
   VectorXd u = context.u_free;
   int k = 0;
   for (; k < max_iterations; ++k) {
-    if (k > 0) u = context.K_factor.solve(VectorXd(qp.f - qp.B.transpose() * lambda));
+    // Warm-started from the previous u: an iterative solver of K then starts close, as λ moves
+    // less and less (a direct one ignores the guess).
+    if (k > 0) u = context.K_factor.solve(VectorXd(qp.f - qp.B.transpose() * lambda), u);
     const VectorXd r = qp.B * u - qp.g;  // ≤ 0 where feasible
     const VectorXd lambda_next = (lambda + step.rho * r).cwiseMax(0.0);
     if (monitor.stop(k, u, r, lambda, lambda_next)) break;

@@ -47,7 +47,7 @@ UzawaRun accelerated_loop(const UzawaContext& context, const UzawaStep& step, in
   int restarts = 0;
   int k = 0;
   for (; k < max_iterations; ++k) {
-    if (k > 0) u = context.K_factor.solve(VectorXd(qp.f - qp.B.transpose() * y));
+    if (k > 0) u = context.K_factor.solve(VectorXd(qp.f - qp.B.transpose() * y), u);  // warm start, as in uzawa.cpp
     const VectorXd r = qp.B * u - qp.g;
     const VectorXd lambda_next = (y + step.rho * r).cwiseMax(0.0);
     if (monitor.stop(k, u, r, y, lambda_next)) break;

@@ -44,7 +44,7 @@ std::vector<int> violated_rows(const QuadraticProgram& qp, const VectorXd& u_fre
 // Plain Uzawa's automatic step is ρ_opt = 2/(λ_min + λ_max), which minimises
 // max |1 − ρμ| over the spectrum; the accelerated iteration needs a step of at most 1/λ_max
 // (Nesterov/FISTA's 1/L), i.e. ρ_max/2.
-UzawaStep choose_step(const QuadraticProgram& qp, const CholeskyFactor& K_factor, const UzawaOptions& uzawa,
+UzawaStep choose_step(const QuadraticProgram& qp, const LinearSolver& K_factor, const UzawaOptions& uzawa,
                       UzawaVariant variant, const std::vector<int>& rows) {
   UzawaStep step;
   step.all_rows = rows.empty();
@@ -162,6 +162,12 @@ IterationMonitor::IterationMonitor(const UzawaContext& context, const UzawaStep&
 
 bool IterationMonitor::stop(int k, const VectorXd& u, const VectorXd& r, const VectorXd& lambda_from,
                             const VectorXd& lambda_next) {
+  // A failed solve with K (an iterative solver that did not converge) ends the run; the
+  // iterate returned is the last one computed from a good solve.
+  if (!context_.K_factor.ok()) {
+    run_.status = Status::NumericalError;
+    return true;
+  }
   const double residual = uzawa_residual(context_.qp, u, r, lambda_from, lambda_next);
   if (context_.options.observer) context_.options.observer(first_k_ + k + 1, u, lambda_from);
   const DivergenceGuard::Verdict verdict = guard_.check(k, residual, lambda_from, lambda_next);
@@ -189,7 +195,7 @@ SolveResult run_uzawa(const QuadraticProgram& qp, const SolveOptions& options, U
   SolveResult result;
   result.K_factor = factor_of_K(qp, options, result.timings, result.message);
   if (!result.K_factor) return result;
-  const CholeskyFactor& K_factor = *result.K_factor;
+  const LinearSolver& K_factor = *result.K_factor;
   const int m = qp.n_constraints();
 
   Stopwatch clock;
@@ -199,6 +205,12 @@ SolveResult run_uzawa(const QuadraticProgram& qp, const SolveOptions& options, U
   if (static_cast<int>(working.size()) == m) working.clear();  // every row: no sub-block
 
   UzawaStep step = choose_step(qp, K_factor, options.uzawa, variant, working);
+  if (!K_factor.ok()) {
+    result.message = "a solve with K failed before the iteration: " + K_factor.message();
+    result.u = u_free;
+    result.lambda = VectorXd::Zero(m);
+    return result;
+  }
   double spectrum_seconds = step.spectrum.seconds;
   int spectrum_solves = step.spectrum.applications;
 
@@ -234,7 +246,9 @@ SolveResult run_uzawa(const QuadraticProgram& qp, const SolveOptions& options, U
   for (const auto& [name, value] : run.diagnostics) result.diagnostics[name] = value;
   result.status = run.status;
   result.iterations = run.iterations;
-  result.message = closing_message(options, variant, step, run, fell_back);
+  result.message = run.status == Status::NumericalError ? "a solve with K failed at iteration " +
+                                                              std::to_string(run.iterations) + ": " + K_factor.message()
+                                                        : closing_message(options, variant, step, run, fell_back);
   result.u = std::move(run.u);
   result.lambda = std::move(run.lambda);
   return result;

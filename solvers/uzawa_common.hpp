@@ -76,7 +76,7 @@ class DivergenceGuard {
 // Everything one run of a loop needs; u_free = K⁻¹f is the iterate at λ = 0, already solved.
 struct UzawaContext {
   const QuadraticProgram& qp;
-  const CholeskyFactor& K_factor;
+  const LinearSolver& K_factor;
   const SolveOptions& options;
   const VectorXd& u_free;
 };

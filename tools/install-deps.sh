@@ -7,12 +7,15 @@
 # module for Debian's /usr/bin/python3; python3-scipy (scipy.sparse in) and python3-pytest run
 # its tests. pybind11-dev does not depend on python3-dev, so both are listed. doxygen builds the
 # API reference from the public headers (the ctest entry api_reference_builds).
+# petsc-dev (PETSc 3.18 with MUMPS and hypre) and OpenMPI: the optional PETSc solver of K
+# (docs/linear-solvers.md); the build works without them.
 set -eu
 packages="cmake g++ make pkg-config
   libeigen3-dev libsuitesparse-dev libopenblas-dev
   coinor-libipopt-dev libnlopt-cxx-dev
   catch2 nlohmann-json3-dev libcli11-dev
   libgmsh-dev gmsh
+  petsc-dev openmpi-bin libopenmpi-dev
   clang libclang-rt-dev
   python3 python3-numpy python3-matplotlib python3-vtk9 python3-getfem
   python3-dev pybind11-dev python3-pybind11 python3-scipy python3-pytest

@@ -123,7 +123,7 @@ bool read_vectors(const std::string& path, VectorXd& u, VectorXd& lambda) {
         << "relative_gap " << certificate.relative_gap << "\n";
     if (result.K_factor) {
       out << "ordering " << result.K_factor->ordering_name() << "\n"
-          << "factor_nonzeros " << result.K_factor->factor_nonzeros() << "\n";
+          << "factor_nonzeros " << result.K_factor->statistics().factor_nonzeros << "\n";
     }
     std::string phases;
     for (const auto& [phase, seconds] : result.timings.phases()) {

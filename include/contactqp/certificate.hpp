@@ -41,10 +41,12 @@ struct Certificate {
   double kkt_max() const;  // the largest of the four relative KKT residuals
 };
 
-// K_factor: a factorisation of qp.K to reuse (e.g. SolveResult::K_factor); when null,
+// K_factor: a solver of qp.K to reuse (e.g. SolveResult::K_factor), of any kind: θ needs one
+// solve with the stationarity residual r, and an iterative solver's relative inner tolerance
+// (docs/linear-solvers.md) keeps the correction ½ rᵀK⁻¹r accurate as r → 0. When null,
 // certify() factorises K itself (one sparse Cholesky).
 Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda,
-                    const CholeskyFactor* K_factor = nullptr);
+                    const LinearSolver* K_factor = nullptr);
 
 // The scales above, exposed so that backends' stopping rules measure the same things.
 double force_scale(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda);

@@ -15,15 +15,13 @@
 #include <string>
 #include <vector>
 
-#include "contactqp/cholesky.hpp"
+#include "contactqp/linear_solver.hpp"
 #include "contactqp/timer.hpp"
 
 namespace contactqp {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;  // column-major, int indices
 using Eigen::VectorXd;
-
-class CholeskyFactor;
 
 // Where a constraint row came from: metadata for post-processing; backends ignore it.
 struct ConstraintRow {
@@ -37,6 +35,9 @@ struct QuadraticProgram {
   SparseMatrix B;                   // m × n: contact rows, −nᵀ at the DOFs of one node each
   VectorXd g;                       // m: initial gaps along the obstacle normal, ≥ 0 unless penetrating
   std::vector<ConstraintRow> rows;  // m entries, or empty when the QP has no mesh behind it
+  // n × k rigid-body modes on the free DOFs (k = 3 in 2D), for algebraic multigrid in an
+  // iterative solver of K; empty when unknown. Filled by assemble_qp; backends never need it.
+  Eigen::MatrixXd near_null_space;
 
   int n_dofs() const { return static_cast<int>(K.rows()); }
   int n_constraints() const { return static_cast<int>(B.rows()); }
@@ -108,12 +109,19 @@ struct SolveOptions {
   UzawaOptions uzawa;
   NloptOptions nlopt;
   ActiveSetOptions active_set;
-  Ordering ordering = Ordering::Amd;  // fill-reducing ordering of K's factorisation (cholesky.hpp)
+  // The solver of K the backends use (linear_solver.hpp, docs/linear-solvers.md). Ipopt
+  // factorises its own KKT matrix with MUMPS and ignores it; active_set's condensation
+  // is fast with CHOLMOD and takes one solve per contact row with another solver.
+  LinearSolverKind linear_solver = LinearSolverKind::Cholmod;
+  Ordering ordering = Ordering::Amd;  // fill-reducing ordering of K's factorisation (CHOLMOD)
+  // PETSc options database entries for linear_solver = petsc, passed through unchanged
+  // ("-ksp_type minres -pc_type hypre"); the PETSC_OPTIONS environment variable is read too.
+  std::string petsc_options;
   // Backend options as text: Ipopt's own options for ipopt, "algorithm"/"memory" for nlopt.
   // A key "ipopt.print_level" is read only by that backend, so one map can serve several.
   std::map<std::string, std::string> backend_options;  // --backend-option key=value, passed through
-  // A factorisation of this QP's K to reuse (backends that use CHOLMOD then skip their own).
-  std::shared_ptr<const CholeskyFactor> K_factor;
+  // A solver of this QP's K to reuse (backends that solve with K then skip their own set-up).
+  std::shared_ptr<const LinearSolver> K_factor;
   // Called by iterative backends with each iterate (k = 1, 2, ...), in the caller's units:
   // for studies of convergence and tests of weak duality. Costs nothing when empty.
   std::function<void(int k, const VectorXd& u, const VectorXd& lambda)> observer;
@@ -126,8 +134,10 @@ struct SolveResult {
   int iterations = 0;
   Timings timings;                                 // seconds per phase ("factorize", "solve", ...)
   std::map<std::string, double> diagnostics;       // named extras: "rho", "rho_max", ...
-  // The factorisation of K the backend used, if any: reuse it for certify() or further solves.
-  std::shared_ptr<const CholeskyFactor> K_factor;
+  // Not failures, but worth telling the user: e.g. a PETSc option nothing read.
+  std::vector<std::string> warnings;
+  // The solver of K the backend used, if any: reuse it for certify() or further solves.
+  std::shared_ptr<const LinearSolver> K_factor;
 };
 
 }  // namespace contactqp

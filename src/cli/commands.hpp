@@ -28,10 +28,15 @@ struct SolveArguments {
   bool verbose = false;
   bool no_contact = false;  // drop the contact rows: one linear solve of the same K
   std::string ordering;     // empty: SolveOptions' default (amd)
+  std::string linear_solver;  // empty: the scene's solver.linear_solver (default cholmod)
+  std::string petsc_options;  // PETSc options database entries, passed through unchanged
+  bool petsc_options_given = false;
   std::vector<std::string> backend_options;  // key=value
 };
 
 void add_solve_command(CLI::App& app, int& exit_status);
+// --linear-solver and --petsc-options, shared by solve and compare.
+void add_linear_solver_options(CLI::App& command, SolveArguments& arguments);
 void add_compare_command(CLI::App& app, int& exit_status);
 
 // The command line's solver settings over the scene's (InputError on a bad value).

@@ -76,6 +76,11 @@ int run_compare(const CompareArguments& arguments) {
 
   for (const std::string& warning : report.warnings) std::cerr << "contactqp: warning: " << warning << "\n";
   const std::vector<BackendRun>& runs = report.runs;
+  // The same solver warnings (an unused PETSc option) would repeat for every backend: once each.
+  std::set<std::string> warned;
+  for (const BackendRun& run : runs)
+    for (const std::string& warning : run.result.warnings)
+      if (warned.insert(warning).second) std::cerr << "contactqp: warning: " << warning << "\n";
   std::cout << format("contactqp compare  %s  (%d DOFs, %d contact candidates, tol %g)\n", scene.source.c_str(),
                       report.qp->n_dofs(), report.qp->n_constraints(), report.tol);
   std::cout << table(runs, report.reference, report.model->dim);
@@ -121,6 +126,7 @@ void add_compare_command(CLI::App& app, int& exit_status) {
       command->add_option("--max-iterations", solve.max_iterations, "Iteration limit of every backend (default 10000)");
   command->add_option("--json", solve.json_path, "Write the comparison JSON here");
   command->add_option("--max-elements", solve.max_elements, "Refuse meshes with more triangles (default 4000000)");
+  add_linear_solver_options(*command, solve);
   command->add_option("--backend-option", solve.backend_options,
                       "key=value for every backend, or ipopt.key=value / nlopt.key=value for one (repeatable)");
   command->callback([arguments, tol, max_iterations, &exit_status] {

@@ -22,6 +22,16 @@ void apply_overrides(const SolveArguments& arguments, SolveOptions& options) {
   }
   options.verbose = arguments.verbose;
   if (!arguments.ordering.empty()) options.ordering = parse_ordering(arguments.ordering, "--ordering");
+  if (!arguments.linear_solver.empty())
+    options.linear_solver = parse_linear_solver(arguments.linear_solver, "--linear-solver");
+  if (arguments.petsc_options_given) {
+    // "--petsc-options= --verbose" hands CLI11 an empty value and it takes the next argument
+    // instead: a value that starts with "--" is one of ours, not PETSc's.
+    if (arguments.petsc_options.rfind("--", 0) == 0)
+      throw InputError("--petsc-options", "= \"" + arguments.petsc_options +
+                                              "\": is a contactqp option, not PETSc's; write --petsc-options=\"-ksp_type cg\"");
+    options.petsc_options = arguments.petsc_options;
+  }
   add_backend_options(arguments.backend_options, options);
 }
 
@@ -78,6 +88,16 @@ void add_backend_options(const std::vector<std::string>& pairs, SolveOptions& op
   }
 }
 
+void add_linear_solver_options(CLI::App& command, SolveArguments& arguments) {
+  command.add_option("--linear-solver", arguments.linear_solver,
+                     "Solver of K for the backends: cholmod (default, direct) or petsc (KSP, CG + GAMG by default)");
+  command
+      .add_option("--petsc-options", arguments.petsc_options,
+                  "PETSc options database entries, passed through unchanged, e.g. --petsc-options=\"-ksp_type minres\" "
+                  "(PETSC_OPTIONS is read too)")
+      ->each([&arguments](const std::string&) { arguments.petsc_options_given = true; });
+}
+
 void add_solve_command(CLI::App& app, int& exit_status) {
   auto arguments = std::make_shared<SolveArguments>();
   CLI::App* command = app.add_subcommand("solve", "Solve one scene and report contact pressure, certificate and Hertz errors");
@@ -95,6 +115,7 @@ void add_solve_command(CLI::App& app, int& exit_status) {
                       "key=value passed to the backend (repeatable); ipopt.key=value addresses one backend");
   command->add_flag("--verbose", arguments->verbose, "Let the backend print its log");
   command->add_option("--ordering", arguments->ordering, "Fill-reducing ordering of K: amd (default), metis or auto");
+  add_linear_solver_options(*command, *arguments);
   command->add_flag("--no-contact", arguments->no_contact,
                     "Drop the contact rows: one linear solve of the same K (the reference for timings)");
   command->callback([arguments, tol, max_iterations, &exit_status] {

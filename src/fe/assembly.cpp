@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "../contact/contact.hpp"
+#include "../model/rigid_body_modes.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/model.hpp"
 
@@ -98,6 +99,7 @@ QuadraticProgram assemble_qp(Model& model) {
   triplets = {};
   refuse_unrepresentable(model, qp);
   detail::add_contact_rows(model, qp);
+  qp.near_null_space = detail::rigid_body_modes(model);  // for AMG in an iterative solver of K
   model.timings.add("assemble", clock.seconds());
   return qp;
 }

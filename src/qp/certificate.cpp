@@ -33,7 +33,7 @@ double Certificate::kkt_max() const {
 }
 
 Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda,
-                    const CholeskyFactor* K_factor) {
+                    const LinearSolver* K_factor) {
   Certificate c;
   const VectorXd Ku = qp.K * u;
   const VectorXd Btl = qp.B.transpose() * lambda;

@@ -32,6 +32,7 @@ struct CholeskyFactor::Impl {
   int failed_column = -1;
   std::string message;
   double analyse_seconds = 0, factorize_seconds = 0;
+  long long solves = 0;  // right-hand sides solved, under `mutex`
   std::mutex mutex;  // CHOLMOD's workspace lives in `common`: one solve at a time
 
   Impl() {
@@ -74,26 +75,6 @@ struct CholeskyFactor::Impl {
     return d;
   }
 };
-
-namespace {
-const std::pair<Ordering, const char*> kOrderingNames[] = {
-    {Ordering::Auto, "auto"}, {Ordering::Amd, "amd"}, {Ordering::Metis, "metis"}};
-}  // namespace
-
-std::string to_string(Ordering ordering) {
-  for (const auto& [value, name] : kOrderingNames)
-    if (value == ordering) return name;
-  return "unknown";
-}
-
-Ordering parse_ordering(const std::string& name, const std::string& field) {
-  std::string valid;
-  for (const auto& [value, known] : kOrderingNames) {
-    if (name == known) return value;
-    valid += (valid.empty() ? "" : ", ") + std::string(known);
-  }
-  throw InputError(field, "= \"" + name + "\": unknown ordering; valid: " + valid);
-}
 
 CholeskyFactor::CholeskyFactor(const Eigen::SparseMatrix<double>& A_in, Ordering ordering)
     : impl_(std::make_shared<Impl>()) {
@@ -199,12 +180,24 @@ std::string CholeskyFactor::ordering_name() const {
   return "unknown";
 }
 
+LinearSolverStatistics CholeskyFactor::statistics() const {
+  LinearSolverStatistics s;
+  s.name = "cholmod";
+  s.method = std::string(supernodal() ? "supernodal" : "simplicial") + " LLᵀ, " + ordering_name() + " ordering";
+  s.setup_seconds = impl_->analyse_seconds + impl_->factorize_seconds;
+  s.factor_nonzeros = factor_nonzeros();
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  s.solves = impl_->solves;
+  return s;
+}
+
 Eigen::MatrixXd CholeskyFactor::solve_columns(const Eigen::MatrixXd& b) const {
   Impl& m = *impl_;
   if (!m.ok || b.rows() != m.n) return Eigen::MatrixXd::Constant(b.rows(), b.cols(), 0.0);
   std::lock_guard<std::mutex> lock(m.mutex);
   cholmod_dense rhs = Impl::view(b);
   cholmod_dense* x = cholmod_solve(CHOLMOD_A, m.L, &rhs, &m.common);
+  m.solves += b.cols();
   Eigen::MatrixXd result(b.rows(), b.cols());
   if (x) {
     result = Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(x->x), b.rows(), b.cols());

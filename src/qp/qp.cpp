@@ -76,6 +76,10 @@ void validate(const QuadraticProgram& qp) {
   if (!qp.rows.empty() && static_cast<long>(qp.rows.size()) != qp.B.rows())
     throw InputError("qp.rows", "has " + std::to_string(qp.rows.size()) + " entries, B has " +
                                     std::to_string(qp.B.rows()) + " rows");
+  if (qp.near_null_space.size() > 0 && qp.near_null_space.rows() != n)
+    throw InputError("qp.near_null_space", "has " + std::to_string(qp.near_null_space.rows()) + " rows, K has " +
+                                               std::to_string(n) + " rows");
+  if (!qp.near_null_space.allFinite()) throw InputError("qp.near_null_space", "has an entry that is not finite");
   if (!all_finite(qp.K)) throw InputError("qp.K", "has an entry that is not finite");
   if (!all_finite(qp.B)) throw InputError("qp.B", "has an entry that is not finite");
   if (!qp.f.allFinite()) throw InputError("qp.f", "has an entry that is not finite");

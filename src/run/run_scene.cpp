@@ -36,6 +36,7 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   report.timings.add("postprocess", clock.seconds());
 
   report.warnings = model->warnings;
+  report.warnings.insert(report.warnings.end(), report.result.warnings.begin(), report.result.warnings.end());
   if (report.contact.penetrating_non_candidates > 0 && !report.no_contact)
     report.warnings.push_back(std::to_string(report.contact.penetrating_non_candidates) +
                               " boundary nodes outside the candidate set penetrate an obstacle (by up to " +

@@ -108,6 +108,8 @@ ContactSpec read_contact(JsonObject contact, const BodySpec& body) {
 void read_solver(JsonObject solver, SolveOptions& options) {
   if (auto backend = solver.optional_string("backend"))
     options.backend = parse_backend(*backend, solver.path_of("backend"));
+  if (auto linear_solver = solver.optional_string("linear_solver"))
+    options.linear_solver = parse_linear_solver(*linear_solver, solver.path_of("linear_solver"));
   if (auto tol = solver.optional_number("tol")) {
     options.tol = *tol;
     require(*tol > 0 && *tol < 1, solver.path_of("tol"), *tol, "must lie in (0, 1)");

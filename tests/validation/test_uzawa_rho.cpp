@@ -260,7 +260,7 @@ namespace {
 // The Hertz QP of a scene, with its factor, for sweeps that re-solve it many times.
 struct HertzQp {
   QuadraticProgram qp;
-  std::shared_ptr<const CholeskyFactor> factor;
+  std::shared_ptr<const LinearSolver> factor;
 };
 
 HertzQp hertz_qp(const std::string& patch) {

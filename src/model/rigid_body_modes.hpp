@@ -1,0 +1,17 @@
+// The rigid-body modes of the model on its free DOFs: the near-null space an algebraic
+// multigrid preconditioner of K needs (QuadraticProgram::near_null_space).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "contactqp/model.hpp"
+
+namespace contactqp::detail {
+
+// n_free × 3 in 2D: translation along x, along y, and the rotation (−(y − y_c), x − x_c)/ℓ
+// about the centroid (scaled by the extent ℓ, so the three columns are of one size), each
+// expressed in the nodes' DOF frames (dof_frame()) and restricted to the free DOFs. n_free × 6
+// in 3D: translations along x, y, z and the rotations e_k × (x − x_c)/ℓ about the three axes.
+Eigen::MatrixXd rigid_body_modes(const Model& model);
+
+}  // namespace contactqp::detail

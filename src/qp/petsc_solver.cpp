@@ -1,0 +1,494 @@
+// PETSc behind the LinearSolver interface: K copied into a PETSc AIJ matrix (MPIAIJ), solved by
+// a KSP — CG preconditioned by GAMG with the rigid-body near-null space, unless the options
+// database says otherwise. Only this file includes PETSc headers. docs/linear-solvers.md has
+// the user's view: options, the inner tolerance rule, what is measured.
+//
+// The process-wide part (PetscRuntime): PetscInitialize once, on first use, which starts MPI
+// when nobody did; PetscFinalize at exit (std::atexit), so that every way out of main(),
+// exit status 2 included, ends PETSc and MPI in order.
+#include "petsc_solver.hpp"
+
+#include <petscksp.h>
+
+#include <Eigen/QR>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "contactqp/errors.hpp"
+#include "contactqp/timer.hpp"
+
+namespace contactqp::detail {
+namespace {
+
+// The inner stopping rule (docs/linear-solvers.md): ‖b − A x‖₂ ≤ kInnerFraction · tol · ‖b‖∞.
+// The certificate's stationarity is ‖Ku − f + Bᵀλ‖∞ / F with F ≥ max(‖f‖∞, ‖Bᵀλ‖∞), and a
+// backend's right-hand side b = f − Bᵀλ has ‖b‖∞ ≤ 2F; with ‖r‖∞ ≤ ‖r‖₂ the solve leaves a
+// stationarity of at most 2 · kInnerFraction · tol = tol / 10, so the certificate holds at tol.
+constexpr double kInnerFraction = 1e-3;
+// Round-off: a residual this small relative to ‖A‖∞‖x‖∞ is as good as a backward-stable
+// direct solve gets, whatever the rule asks (CG then stagnates instead of converging).
+constexpr double kRoundOff = 100 * 2.220446049250313e-16;
+// Iterations of one KSP solve before it counts as not converging (-ksp_max_it overrides).
+constexpr PetscInt kMaxKrylovIterations = 10000;
+
+// The text of a PETSc error code, with the specific message of the last error.
+std::string error_text(PetscErrorCode code) {
+  const char* text = nullptr;
+  char* specific = nullptr;
+  PetscErrorMessage(code, &text, &specific);
+  std::string out = text ? text : "PETSc error " + std::to_string(code);
+  if (specific && *specific) out += std::string(": ") + specific;
+  std::replace(out.begin(), out.end(), '\n', ' ');
+  return out;
+}
+
+// The names in an options string ("-ksp_type cg -pc_type gamg" -> ksp_type, pc_type).
+std::vector<std::string> option_names(const std::string& text) {
+  std::vector<std::string> names;
+  std::istringstream words(text);
+  std::string word;
+  while (words >> word)
+    if (word.size() > 1 && word[0] == '-' && (std::isalpha(static_cast<unsigned char>(word[1])) || word[1] == '_'))
+      names.push_back(word.substr(1));
+  return names;
+}
+
+std::string environment_options() {
+  const char* text = std::getenv("PETSC_OPTIONS");
+  return text ? text : "";
+}
+
+// PETSc and MPI for the whole process. PETSc's options database is process-wide too: the
+// options of the solver set up last are the ones in it (earlier strings are cleared, the
+// environment's re-inserted), so solvers built one after another in one process do not see
+// each other's options.
+class PetscRuntime {
+ public:
+  // Initialises on first use with `options` as its command line, so that process-wide options
+  // (-log_view, -info, -malloc_debug) take effect as PETSc users expect. Throws InputError
+  // when PETSc cannot start.
+  static PetscRuntime& instance(const std::string& options) {
+    // Never destroyed: PETSc holds pointers into its argv until PetscFinalize, at exit.
+    static PetscRuntime* runtime = new PetscRuntime(options);
+    return *runtime;
+  }
+
+  // Changes whenever the database changes hands: a solver checks for unused options only
+  // while the database still holds what it was set up with.
+  long generation() const { return generation_; }
+
+  // Puts `options` (and PETSC_OPTIONS) in the database in place of the previous solver's.
+  void use_options(const std::string& options) {
+    if (options == current_) return;
+    for (const std::string& name : option_names(current_)) PetscOptionsClearValue(nullptr, ("-" + name).c_str());
+    const std::string environment = environment_options();
+    if (!environment.empty()) PetscOptionsInsertString(nullptr, environment.c_str());
+    const PetscErrorCode code = PetscOptionsInsertString(nullptr, options.c_str());
+    if (code) throw InputError("petsc_options", "= \"" + options + "\": " + error_text(code));
+    current_ = options;
+    ++generation_;
+  }
+
+  // The options of `options` and PETSC_OPTIONS that nothing has read (PETSc's -options_left).
+  std::vector<std::string> unused(const std::string& options) const {
+    std::set<std::string> ours;
+    for (const std::string& name : option_names(options)) ours.insert(name);
+    for (const std::string& name : option_names(environment_options())) ours.insert(name);
+    // Read only by PetscFinalize (or at start-up): not "unused" while a solve runs.
+    for (const char* late : {"options_left", "log_view", "memory_view", "malloc_dump", "malloc_view", "objects_dump",
+                             "malloc_debug", "info", "skip_petscrc", "no_signal_handler", "help"})
+      ours.erase(late);
+    std::vector<std::string> out;
+    PetscInt n = 0;
+    char** names = nullptr;
+    char** values = nullptr;
+    if (PetscOptionsLeftGet(nullptr, &n, &names, &values)) return out;
+    for (PetscInt i = 0; i < n; ++i) {
+      std::string name = names[i] ? names[i] : "";
+      if (!name.empty() && name[0] == '-') name.erase(0, 1);
+      if (ours.count(name)) out.push_back("-" + name + (values[i] ? std::string(" ") + values[i] : std::string()));
+    }
+    PetscOptionsLeftRestore(nullptr, &n, &names, &values);
+    return out;
+  }
+
+ private:
+  explicit PetscRuntime(const std::string& options) : current_(options) {
+    PetscBool initialized = PETSC_FALSE;
+    PetscInitialized(&initialized);
+    if (!initialized) {
+      // PETSc keeps pointers to argv: the strings live as long as the runtime.
+      arguments_.push_back("contactqp");
+      std::istringstream words(options);
+      std::string word;
+      while (words >> word) arguments_.push_back(word);
+      for (std::string& argument : arguments_) argv_.push_back(argument.data());
+      argv_.push_back(nullptr);
+      argc_ = static_cast<int>(arguments_.size());
+      char** argv = argv_.data();
+      const PetscErrorCode code = PetscInitialize(&argc_, &argv, nullptr, nullptr);
+      if (code) throw InputError("linear_solver", "= \"petsc\": PETSc could not start (error " + std::to_string(code) + ")");
+      std::atexit(finalize);
+    } else {
+      PetscOptionsInsertString(nullptr, options.c_str());
+    }
+    // Errors come back as codes and become our messages; no tracebacks on stderr. PETSc's
+    // signal handler would turn a crash elsewhere in the program into a PETSc message.
+    PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+    PetscPopSignalHandler();
+  }
+
+  static void finalize() {
+    PetscBool finalized = PETSC_TRUE;
+    PetscFinalized(&finalized);
+    if (!finalized) PetscFinalize();
+  }
+
+  std::string current_;
+  long generation_ = 0;
+  std::vector<std::string> arguments_;
+  std::vector<char*> argv_;
+  int argc_ = 0;
+};
+
+std::mutex& petsc_mutex() {  // PETSc is not thread-safe: one call into it at a time
+  static std::mutex mutex;
+  return mutex;
+}
+
+bool petsc_finalized() {
+  PetscBool finalized = PETSC_FALSE;
+  PetscFinalized(&finalized);
+  return finalized;
+}
+
+class PetscSolver final : public LinearSolver {
+ public:
+  struct Impl;
+  PetscSolver(std::shared_ptr<Impl> impl, double scale) : impl_(std::move(impl)), scale_(scale) {}
+
+  bool ok() const override;
+  const std::string& message() const override;
+  int size() const override;
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const override { return solve(b, Eigen::VectorXd()); }
+  Eigen::VectorXd solve(const Eigen::VectorXd& b, const Eigen::VectorXd& guess) const override;
+  LinearSolverStatistics statistics() const override;
+  std::vector<std::string> warnings() const override;
+
+ protected:
+  std::shared_ptr<const LinearSolver> scaled_solver(double c) const override {
+    return std::make_shared<PetscSolver>(impl_, scale_ * c);
+  }
+
+ private:
+  std::shared_ptr<Impl> impl_;
+  double scale_ = 1.0;  // stands for scale·A: solves divide by it
+};
+
+struct PetscSolver::Impl {
+  Mat A = nullptr;
+  KSP ksp = nullptr;
+  Vec x = nullptr, b = nullptr;
+  VecScatter to_all = nullptr;  // the distributed solution onto every rank (one rank: a copy)
+  Vec x_all = nullptr;
+  void* default_test = nullptr;  // KSPConvergedDefault's context: the user's -ksp_rtol etc.
+  int n = 0;
+  PetscInt first_row = 0, end_row = 0;  // the rows this rank owns
+  double tol = 1e-8;
+  double target = 0;  // the absolute residual the current solve stops at
+  double A_norm = 0;  // ‖A‖∞, for the round-off floor
+  bool ok = false;
+  std::string message;
+  std::string options;
+  std::vector<std::string> warnings;
+  bool checked_unused = false;
+  long generation = -1;  // of the options database at set-up
+  double setup_seconds = 0;
+  long long solves = 0, iterations = 0;
+  std::string method;
+
+  ~Impl() {
+    if (petsc_finalized()) return;  // PETSc freed everything at finalize
+    std::lock_guard<std::mutex> lock(petsc_mutex());
+    if (to_all) VecScatterDestroy(&to_all);
+    if (x_all) VecDestroy(&x_all);
+    if (x) VecDestroy(&x);
+    if (b) VecDestroy(&b);
+    if (ksp) KSPDestroy(&ksp);
+    if (A) MatDestroy(&A);
+    if (default_test) KSPConvergedDefaultDestroy(default_test);
+  }
+
+  bool fail(const std::string& what, PetscErrorCode code) {
+    ok = false;
+    message = what + ": " + error_text(code);
+    return false;
+  }
+  // The options database named something PETSc does not have (an unknown KSP or PC type, a
+  // bad value): bad input, reported as such once the PETSc objects are released.
+  bool bad_options(const std::string& what, PetscErrorCode code) {
+    options_error = true;
+    return fail(what, code);
+  }
+  bool options_error = false;
+  bool preconditioned_norm = false;  // the method could not measure the true residual
+
+  // KSPConvergedDefault first (divergence, -ksp_max_it, a user's -ksp_rtol or -ksp_atol), then
+  // the inner rule on the unpreconditioned residual norm.
+  static PetscErrorCode converged(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason, void* context) {
+    Impl& impl = *static_cast<Impl*>(context);
+    PetscCall(KSPConvergedDefault(ksp, it, rnorm, reason, impl.default_test));
+    if (*reason != KSP_CONVERGED_ITERATING) return 0;
+    double target = impl.target;
+    // The floor needs ‖x‖∞ (free for CG: its iterate is stored), looked at only near the target.
+    if (rnorm > target && rnorm <= 1e6 * target) {
+      Vec x = nullptr;
+      PetscReal x_norm = 0;
+      PetscCall(KSPBuildSolution(ksp, nullptr, &x));
+      PetscCall(VecNorm(x, NORM_INFINITY, &x_norm));
+      target = std::max(target, kRoundOff * impl.A_norm * x_norm);
+    }
+    if (rnorm <= target) *reason = KSP_CONVERGED_ATOL;
+    return 0;
+  }
+
+  bool set_up(const Eigen::SparseMatrix<double>& K, const LinearSolverOptions& options);
+};
+
+bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const LinearSolverOptions& settings) {
+  PetscErrorCode code = 0;
+  // Rows are distributed by PETSc (PETSC_DECIDE) and each rank sets only the rows it owns, from
+  // its own copy of K for now; with a distributed assembly each rank will pass just its rows.
+  PetscInt local_rows = PETSC_DECIDE, global_rows = n;
+  if ((code = PetscSplitOwnership(PETSC_COMM_WORLD, &local_rows, &global_rows))) return fail("PetscSplitOwnership", code);
+  MPI_Scan(&local_rows, &end_row, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
+  first_row = end_row - local_rows;
+  if ((code = MatCreate(PETSC_COMM_WORLD, &A))) return fail("MatCreate", code);
+  if ((code = MatSetSizes(A, local_rows, local_rows, n, n))) return fail("MatSetSizes", code);
+  if ((code = MatSetType(A, MATMPIAIJ))) return fail("MatSetType", code);
+  if ((code = MatSetFromOptions(A))) return bad_options("MatSetFromOptions", code);
+  // K is symmetric with both triangles stored: column j of the column-major K is row j.
+  std::vector<PetscInt> diagonal_block(end_row - first_row, 0), off_diagonal_block(end_row - first_row, 0);
+  for (PetscInt row = first_row; row < end_row; ++row)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(K, static_cast<int>(row)); it; ++it)
+      ++(it.row() >= first_row && it.row() < end_row ? diagonal_block : off_diagonal_block)[row - first_row];
+  MatMPIAIJSetPreallocation(A, 0, diagonal_block.data(), 0, off_diagonal_block.data());
+  MatSeqAIJSetPreallocation(A, 0, diagonal_block.data());  // when -mat_type seqaij was asked for
+  std::vector<PetscInt> columns;
+  std::vector<PetscScalar> values;
+  for (PetscInt row = first_row; row < end_row; ++row) {
+    columns.clear();
+    values.clear();
+    for (Eigen::SparseMatrix<double>::InnerIterator it(K, static_cast<int>(row)); it; ++it) {
+      columns.push_back(it.row());
+      values.push_back(it.value());
+    }
+    if ((code = MatSetValues(A, 1, &row, static_cast<PetscInt>(columns.size()), columns.data(), values.data(),
+                             INSERT_VALUES)))
+      return fail("MatSetValues", code);
+  }
+  if ((code = MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY)) || (code = MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY)))
+    return fail("MatAssembly", code);
+  MatNorm(A, NORM_INFINITY, &A_norm);
+  MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE);
+  MatSetOption(A, MAT_SPD, PETSC_TRUE);
+
+  // The rigid-body modes, orthonormalised, as GAMG's near-null space.
+  const Eigen::MatrixXd& modes = settings.near_null_space;
+  if (modes.cols() > 0 && modes.rows() == n) {
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(modes);
+    const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(n, modes.cols());
+    std::vector<Vec> vectors(modes.cols());
+    for (Eigen::Index k = 0; k < modes.cols(); ++k) {
+      MatCreateVecs(A, &vectors[k], nullptr);
+      PetscScalar* local = nullptr;
+      VecGetArray(vectors[k], &local);
+      for (PetscInt row = first_row; row < end_row; ++row) local[row - first_row] = Q(row, k);
+      VecRestoreArray(vectors[k], &local);
+    }
+    MatNullSpace space = nullptr;
+    code = MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(vectors.size()), vectors.data(), &space);
+    if (!code) code = MatSetNearNullSpace(A, space);
+    MatNullSpaceDestroy(&space);
+    for (Vec& v : vectors) VecDestroy(&v);
+    if (code) return fail("MatSetNearNullSpace", code);
+  }
+
+  // CG + GAMG by default; the options database may change any of it.
+  if ((code = KSPCreate(PETSC_COMM_WORLD, &ksp))) return fail("KSPCreate", code);
+  KSPSetOperators(ksp, A, A);
+  KSPSetType(ksp, KSPCG);
+  PC pc = nullptr;
+  KSPGetPC(ksp, &pc);
+  PCSetType(pc, PCGAMG);
+  KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED);  // the rule bounds the true residual
+  KSPSetTolerances(ksp, 0.0, 0.0, PETSC_DEFAULT, kMaxKrylovIterations);  // only the inner rule stops
+  KSPConvergedDefaultCreate(&default_test);
+  KSPSetConvergenceTest(ksp, converged, this, nullptr);
+  if ((code = KSPSetFromOptions(ksp))) return bad_options("KSPSetFromOptions", code);
+  // A Krylov method other than CG measures its unpreconditioned residual only with the
+  // preconditioner on the right: take that side unless the user chose a norm or side.
+  KSPType type = nullptr;
+  KSPGetType(ksp, &type);
+  PetscBool norm_given = PETSC_FALSE, side_given = PETSC_FALSE, is_cg = PETSC_FALSE;
+  PetscOptionsHasName(nullptr, nullptr, "-ksp_norm_type", &norm_given);
+  PetscOptionsHasName(nullptr, nullptr, "-ksp_pc_side", &side_given);
+  PetscStrcmp(type, KSPCG, &is_cg);
+  if (!is_cg && !norm_given && !side_given) KSPSetPCSide(ksp, PC_RIGHT);
+
+  Stopwatch clock;
+  code = KSPSetUp(ksp);
+  if (code == PETSC_ERR_SUP && !norm_given && !side_given) {
+    // Some methods (MINRES, ...) measure only the preconditioned residual: take PETSc's own
+    // norm and side for them. The inner rule then bounds that norm, not the true residual;
+    // the certificate still measures the true one.
+    KSPSetNormType(ksp, KSP_NORM_DEFAULT);
+    KSPSetPCSide(ksp, PC_SIDE_DEFAULT);
+    code = KSPSetUp(ksp);
+    preconditioned_norm = true;
+  }
+  if (code) return fail("KSPSetUp", code);
+  setup_seconds += clock.seconds();
+  PCType pc_type = nullptr;
+  KSPGetPC(ksp, &pc);
+  PCGetType(pc, &pc_type);
+  KSPGetType(ksp, &type);
+  method = std::string(type ? type : "?") + " + " + (pc_type ? pc_type : "?") +
+           (modes.cols() > 0 ? ", " + std::to_string(modes.cols()) + " near-null modes" : "") +
+           (preconditioned_norm ? ", preconditioned residual norm" : "");
+
+  MatCreateVecs(A, &x, &b);
+  if ((code = VecScatterCreateToAll(x, &to_all, &x_all))) return fail("VecScatterCreateToAll", code);
+  ok = true;
+  return true;
+}
+
+bool PetscSolver::ok() const {
+  std::lock_guard<std::mutex> lock(petsc_mutex());
+  return impl_->ok;
+}
+const std::string& PetscSolver::message() const { return impl_->message; }
+int PetscSolver::size() const { return impl_->n; }
+
+std::vector<std::string> PetscSolver::warnings() const {
+  std::lock_guard<std::mutex> lock(petsc_mutex());
+  return impl_->warnings;
+}
+
+LinearSolverStatistics PetscSolver::statistics() const {
+  std::lock_guard<std::mutex> lock(petsc_mutex());
+  LinearSolverStatistics s;
+  s.name = "petsc";
+  s.method = impl_->method;
+  s.setup_seconds = impl_->setup_seconds;
+  s.solves = impl_->solves;
+  s.iterations = impl_->iterations;
+  return s;
+}
+
+Eigen::VectorXd PetscSolver::solve(const Eigen::VectorXd& rhs, const Eigen::VectorXd& guess) const {
+  Impl& m = *impl_;
+  std::lock_guard<std::mutex> lock(petsc_mutex());
+  const bool warm = guess.size() == m.n && guess.allFinite();
+  if (!m.ok || rhs.size() != m.n) return warm ? guess : Eigen::VectorXd::Zero(rhs.size());
+  // The solver stands for scale·A: A y = b, x = y / scale, so y starts from scale·guess.
+  const double bound = rhs.cwiseAbs().maxCoeff();
+  if (bound == 0) return Eigen::VectorXd::Zero(m.n);
+  PetscRuntime::instance(m.options).use_options(m.options);
+  PetscScalar* local = nullptr;
+  VecGetArray(m.b, &local);
+  for (PetscInt row = m.first_row; row < m.end_row; ++row) local[row - m.first_row] = rhs[row];
+  VecRestoreArray(m.b, &local);
+  VecGetArray(m.x, &local);
+  for (PetscInt row = m.first_row; row < m.end_row; ++row) local[row - m.first_row] = warm ? scale_ * guess[row] : 0.0;
+  VecRestoreArray(m.x, &local);
+  KSPSetInitialGuessNonzero(m.ksp, warm ? PETSC_TRUE : PETSC_FALSE);
+  m.target = kInnerFraction * m.tol * bound;
+
+  PetscErrorCode code = KSPSolve(m.ksp, m.b, m.x);
+  PetscInt iterations = 0;
+  KSPGetIterationNumber(m.ksp, &iterations);
+  ++m.solves;
+  m.iterations += iterations;
+  KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+  if (!code) code = KSPGetConvergedReason(m.ksp, &reason);
+  if (code) {
+    m.fail("KSPSolve", code);
+  } else if (reason < 0) {
+    const char* name = nullptr;
+    KSPGetConvergedReasonString(m.ksp, &name);
+    PetscReal residual = 0;
+    KSPGetResidualNorm(m.ksp, &residual);
+    std::ostringstream text;
+    text.precision(3);
+    // KSPGetConvergedReasonString drops the enum's KSP_ prefix: the name as PETSc's manual has it.
+    text << "the PETSc KSP did not converge: KSP_" << (name ? name : "unknown reason") << " after " << iterations
+         << " iterations at residual " << residual << " (target " << m.target << ")";
+    m.ok = false;
+    m.message = text.str();
+  }
+  if (!m.checked_unused && PetscRuntime::instance(m.options).generation() == m.generation) {
+    m.checked_unused = true;
+    for (const std::string& option : PetscRuntime::instance(m.options).unused(m.options))
+      m.warnings.push_back("PETSc option " + option + " was not used (PETSc's -options_left)");
+  }
+
+  // Every rank receives the whole solution (the backends iterate on full vectors).
+  VecScatterBegin(m.to_all, m.x, m.x_all, INSERT_VALUES, SCATTER_FORWARD);
+  VecScatterEnd(m.to_all, m.x, m.x_all, INSERT_VALUES, SCATTER_FORWARD);
+  const PetscScalar* all = nullptr;
+  VecGetArrayRead(m.x_all, &all);
+  Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(all, m.n) / scale_;
+  VecRestoreArrayRead(m.x_all, &all);
+  if (!out.allFinite()) {
+    if (m.ok) {
+      m.ok = false;
+      m.message = "the PETSc KSP returned a solution that is not finite";
+    }
+    out = warm ? guess : Eigen::VectorXd::Zero(m.n);
+  }
+  return out;
+}
+
+}  // namespace
+
+bool petsc_available() { return true; }
+
+void start_petsc_runtime(const std::string& options) {
+  std::lock_guard<std::mutex> lock(petsc_mutex());
+  PetscRuntime::instance(options);
+}
+
+std::shared_ptr<const LinearSolver> make_petsc_solver(const Eigen::SparseMatrix<double>& K,
+                                                      const LinearSolverOptions& options) {
+  auto impl = std::make_shared<PetscSolver::Impl>();
+  {
+    std::lock_guard<std::mutex> lock(petsc_mutex());
+    PetscRuntime& runtime = PetscRuntime::instance(options.petsc_options);
+    runtime.use_options(options.petsc_options);
+    impl->generation = runtime.generation();
+    impl->n = static_cast<int>(K.rows());
+    impl->tol = options.tol;
+    impl->options = options.petsc_options;
+    Stopwatch clock;
+    if (K.rows() != K.cols()) {
+      impl->message = "matrix is not square";
+    } else {
+      Eigen::SparseMatrix<double> compressed = K;
+      compressed.makeCompressed();
+      impl->set_up(compressed, options);
+    }
+    impl->setup_seconds = clock.seconds();
+  }
+  // Thrown without the lock: unwinding destroys impl, whose destructor takes it.
+  if (impl->options_error) throw InputError("petsc_options", "= \"" + options.petsc_options + "\": " + impl->message);
+  return std::make_shared<PetscSolver>(impl, 1.0);
+}
+
+}  // namespace contactqp::detail
