@@ -34,6 +34,9 @@ endif()
 if(CONTACTQP_HAVE_NLOPT)
   string(APPEND CONTACTQP_PC_REQUIRES " nlopt")
 endif()
+if(CONTACTQP_WITH_PETSC)
+  string(APPEND CONTACTQP_PC_REQUIRES " PETSc ompi-cxx")
+endif()
 # Relocatable: the prefix is found from the .pc file's own place, so `--prefix P` at install
 # time works (libdir is lib, or lib/<multiarch> under /usr).
 string(REGEX REPLACE "[^/]+" ".." CONTACTQP_PC_TO_PREFIX "${CMAKE_INSTALL_LIBDIR}/pkgconfig")

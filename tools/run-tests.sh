@@ -39,9 +39,12 @@ echo "== 2/3 AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
 # -O1 -g1 (line tables: reports still name file and line) compiles the Eigen-heavy tests about
 # 2.4 times faster than RelWithDebInfo's -O2 -g, which took 21 of this stage's 28 minutes.
 # No Python module here: an ASan-built module cannot load into Debian's uninstrumented
-# interpreter without preloading the runtime; stage 1 tests it.
+# interpreter without preloading the runtime; stage 1 tests it. No PETSc either, for now: the
+# PETSc and OpenMPI libraries are not built with the sanitizers and their start-up has not been
+# tried under them (a next step); stage 1 tests the PETSc solver of K.
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
-  -DCONTACTQP_SANITIZE=address,undefined -DCONTACTQP_BUILD_BENCHMARKS=OFF -DCONTACTQP_BUILD_PYTHON=OFF
+  -DCONTACTQP_SANITIZE=address,undefined -DCONTACTQP_BUILD_BENCHMARKS=OFF -DCONTACTQP_BUILD_PYTHON=OFF \
+  -DCONTACTQP_WITH_PETSC=OFF
 cmake --build build-asan -j$jobs
 # Leaks are reported at exit and fail the test; tools/lsan.supp names the few that are
 # third-party libraries' own (see the file).

@@ -154,31 +154,23 @@ std::string result_json(const RunReport& report) {
 
   const ContactSummary& contact = report.contact;
   const int dim = model.dim;
+  json& zone = out["contact"];
+  zone = {{"total_force", number(contact.total_force)},
+          {"max_pressure", number(contact.max_pressure)},
+          {"contact_nodes", contact.contact_nodes},
+          {"candidate_max_gap", number(model.max_gap)},
+          {"candidate_rule", model.max_gap_rule},
+          {"penetrating_non_candidates", contact.penetrating_non_candidates},
+          {"profile", profile_json(contact.profile)},  // 2D: [[s, p], ...]; 3D: [[r, p], ...] from the contact centre
+          {"obstacles", obstacles_json(model, contact)}};
   if (dim == 2) {
-    out["contact"] = {{"total_force", number(contact.total_force)},
-                      {"line_load", number(contact.line_load)},
-                      {"half_width", number(contact.half_width)},
-                      {"half_width_last_node", number(contact.half_width_last_node)},
-                      {"max_pressure", number(contact.max_pressure)},
-                      {"contact_nodes", contact.contact_nodes},
-                      {"candidate_max_gap", number(model.max_gap)},
-                      {"candidate_rule", model.max_gap_rule},
-                      {"penetrating_non_candidates", contact.penetrating_non_candidates},
-                      {"profile", profile_json(contact.profile)},
-                      {"obstacles", obstacles_json(model, contact)}};
+    zone["line_load"] = number(contact.line_load);
+    zone["half_width"] = number(contact.half_width);
+    zone["half_width_last_node"] = number(contact.half_width_last_node);
   } else {
-    // 3D: the profile is [[r, p], ...] by distance from the contact centre.
-    out["contact"] = {{"total_force", number(contact.total_force)},
-                      {"contact_area", number(contact.contact_area)},
-                      {"contact_radius", number(contact.contact_radius)},
-                      {"contact_radius_last_node", number(contact.contact_radius_last_node)},
-                      {"max_pressure", number(contact.max_pressure)},
-                      {"contact_nodes", contact.contact_nodes},
-                      {"candidate_max_gap", number(model.max_gap)},
-                      {"candidate_rule", model.max_gap_rule},
-                      {"penetrating_non_candidates", contact.penetrating_non_candidates},
-                      {"profile", profile_json(contact.profile)},
-                      {"obstacles", obstacles_json(model, contact)}};
+    zone["contact_area"] = number(contact.contact_area);
+    zone["contact_radius"] = number(contact.contact_radius);
+    zone["contact_radius_last_node"] = number(contact.contact_radius_last_node);
   }
   if (report.hertz) out["hertz"] = hertz_json(*report.hertz);
   if (report.boussinesq) out["boussinesq"] = boussinesq_json(*report.boussinesq);

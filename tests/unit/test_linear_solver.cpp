@@ -132,7 +132,7 @@ TEST_CASE("assemble_qp fills the rigid-body modes on the free DOFs, in the DOF f
       Eigen::MatrixXd A(2 * nodes.size(), 3);
       Eigen::VectorXd y(2 * nodes.size());
       for (size_t k = 0; k < nodes.size(); ++k) {
-        const Eigen::Vector2d x = model.mesh.nodes[nodes[k]];
+        const Eigen::Vector2d x = model.mesh.nodes[nodes[k]].head<2>();
         A.row(2 * k) << 1, 0, -x.y();
         A.row(2 * k + 1) << 0, 1, x.x();
         y.segment<2>(2 * k) = full.segment<2>(2 * nodes[k]);
