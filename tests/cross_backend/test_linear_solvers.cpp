@@ -76,10 +76,14 @@ TEST_CASE("with PETSc as the solver of K the backends give CHOLMOD's u on shippe
           "[cross_backend][linear_solver][hertz]") {
   if (!petsc_built_in()) return;
   // hertz: the paper's problem; disc-in-vgroove (coarser at the contact, as test_scenes has
-  // it, to keep the test short): two obstacles, nodes with a row for each.
-  const std::string scene = GENERATE(as<std::string>{}, "scenes/hertz.json", "scenes/disc-in-vgroove.json");
-  const QuadraticProgram qp =
-      scene_qp(scene, scene == "scenes/hertz.json" ? "{}" : R"({"body": {"mesh": {"contact_size": 0.01}}})");
+  // it, to keep the test short): two obstacles, nodes with a row for each; hertz-sphere (coarse
+  // 4-node tetrahedra): 3D, GAMG with the six rigid-body modes.
+  const std::string scene =
+      GENERATE(as<std::string>{}, "scenes/hertz.json", "scenes/disc-in-vgroove.json", "scenes/hertz-sphere.json");
+  const char* patch = scene == "scenes/hertz.json"            ? "{}"
+                      : scene == "scenes/disc-in-vgroove.json" ? R"({"body": {"mesh": {"contact_size": 0.01}}})"
+                                                              : R"({"body": {"mesh": {"contact_size": 0.03, "order": 1}}})";
+  const QuadraticProgram qp = scene_qp(scene, patch);
   const double tol = 1e-10;
   for (Backend backend : kSolvingBackends) {
     CAPTURE(scene, to_string(backend));
