@@ -126,10 +126,10 @@ Mesh mesh_rectangle_body(const Scene& scene, double max_gap, const BuildOptions&
   return generate([&] { return mesh_rectangle(request); });
 }
 
-// The radius, around the lowest point of a body's contact face, within which it may touch: the
-// nodes of the contact boundary facing an obstacle within max_gap, found by sampling the
-// surface (a cap of the hemisphere, a disc of the box's bottom). With no such point, the
-// contact_size disc around the point closest to an obstacle.
+// The radius, around the lowest point of a body's contact face (the origin), within which it may
+// touch: the farthest sample of the surface (a cap of the hemisphere, a disc of the box's bottom)
+// that faces an obstacle within max_gap, widened by `widen`. With no such sample, `widen` alone:
+// the generated bodies are made to touch first at the origin.
 double fine_radius(const std::function<Eigen::Vector3d(double, double)>& surface,
                    const std::function<Eigen::Vector3d(double, double)>& outward, double r_max,
                    const std::vector<ObstacleSpec>& obstacles, double max_gap, double widen) {
