@@ -5,6 +5,7 @@
 # (scaling_benchmark --scenes), METIS ordering (the 3D default).
 #
 #     benchmarks/scaling/regenerate-3d.sh [BUILD_DIR] [TIME_CAP_SECONDS]     (defaults: build, 300)
+#     LEVELS="1:0.01 2:0.02" benchmarks/scaling/regenerate-3d.sh             (only these order:contact_size levels)
 #
 # Writes benchmarks/scaling/results-3d/: scenes/ (the levels), scaling.csv, context.json. A
 # backend slower than the cap on one level is skipped on the larger ones and recorded as such.
@@ -18,7 +19,7 @@ mkdir -p "$RESULTS/scenes"
 cmake -S "$SOURCE" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DCONTACTQP_BUILD_BENCHMARKS=ON >/dev/null
 cmake --build "$BUILD" -j2 --target scaling_benchmark
 # order:contact_size, from about 1e4 DOFs up; the largest 4-node level has about 4e5 DOFs.
-LEVELS="1:0.01 2:0.02 1:0.007 2:0.014 1:0.005 2:0.01 1:0.0035 2:0.007 1:0.0025"
+LEVELS=${LEVELS:-"1:0.01 2:0.02 1:0.007 2:0.014 1:0.005 2:0.01 1:0.0035 2:0.007 1:0.0025"}
 SCENES=""
 for level in $LEVELS; do
   order=${level%%:*}
