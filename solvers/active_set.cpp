@@ -167,8 +167,8 @@ SolveResult solve_active_set(const QuadraticProgram& qp, const SolveOptions& opt
   switch (outcome) {
     case LcpOutcome::Converged:
       result.status = Status::Converged;
-      result.message = "converged: condensed LCP residual " + short_number(residual) + " <= " +
-                       short_number(options.tol) + " (" + how + ")";
+      result.message = "converged: condensed LCP residual " + short_number(residual) +
+                       " <= " + short_number(options.tol) + " (" + how + ")";
       break;
     case LcpOutcome::MaxIterations:
       result.status = Status::MaxIterations;

@@ -26,7 +26,8 @@ OptionMap options_for(Backend backend, const OptionMap& options) {
 
 void reject_options(Backend backend, const OptionMap& options, const std::string& hint) {
   for (const auto& [key, value] : options_for(backend, options))
-    throw InputError(option_field(key), "= \"" + value + "\": " + to_string(backend) + " takes no backend options; " + hint);
+    throw InputError(option_field(key),
+                     "= \"" + value + "\": " + to_string(backend) + " takes no backend options; " + hint);
 }
 
 std::string option_field(const std::string& key) { return "backend option " + key; }

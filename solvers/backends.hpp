@@ -26,9 +26,8 @@ SolveResult solve_active_set(const QuadraticProgram& qp, const SolveOptions& opt
 // otherwise a fresh one of the kind options.linear_solver names (inner tolerance from
 // options.tol, near-null space from qp), whose set-up time is recorded in timings as
 // "factorize". Null with `message` set when the set-up failed (K not positive definite, ...).
-std::shared_ptr<const LinearSolver> factor_of_K(const QuadraticProgram& qp,
-                                                  const SolveOptions& options, Timings& timings,
-                                                  std::string& message);
+std::shared_ptr<const LinearSolver> factor_of_K(const QuadraticProgram& qp, const SolveOptions& options,
+                                                Timings& timings, std::string& message);
 
 // The solver of K's Krylov iterations and solves into result.diagnostics (iterative solvers
 // only: "krylov_iterations", "linear_solves") and its warnings into result.warnings.

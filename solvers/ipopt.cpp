@@ -40,7 +40,6 @@ std::mutex& ipopt_mutex() {
 // Beyond Ipopt's nlp_lower_bound_inf / nlp_upper_bound_inf (±1e19 by default): no bound.
 constexpr double kNoBound = 1e300;
 
-
 // The QP as Ipopt's TNLP. The sparsity patterns are fixed here, once.
 class QpNlp : public Ipopt::TNLP {
  public:
@@ -122,8 +121,8 @@ class QpNlp : public Ipopt::TNLP {
   // Hands each iterate to the observer. Ipopt 3.11 offers the iterate only in its internal
   // form: x and the multipliers y_d of the inequalities, which are ours because every row is
   // an inequality, no variable is fixed, and Ipopt's own NLP scaling is off (see below).
-  bool intermediate_callback(Ipopt::AlgorithmMode mode, Index iteration, Number, Number, Number, Number, Number,
-                             Number, Number, Number, Index, const Ipopt::IpoptData* data,
+  bool intermediate_callback(Ipopt::AlgorithmMode mode, Index iteration, Number, Number, Number, Number, Number, Number,
+                             Number, Number, Index, const Ipopt::IpoptData* data,
                              Ipopt::IpoptCalculatedQuantities*) override {
     if (!observer_ || !observe_ || mode != Ipopt::RegularMode || !data) return true;
     const auto* x = dynamic_cast<const Ipopt::DenseVector*>(Ipopt::GetRawPtr(data->curr()->x()));
@@ -203,7 +202,8 @@ void set_option(Ipopt::IpoptApplication& app, const std::string& key, const std:
       app.Options()->SetStringValue(key, value);
       return;
     }
-    case Ipopt::OT_Unknown: break;
+    case Ipopt::OT_Unknown:
+      break;
   }
   throw InputError(field, "= \"" + value + "\": Ipopt registers this option without a type");
 }
@@ -242,7 +242,7 @@ void configure(Ipopt::IpoptApplication& app, const QuadraticProgram& qp, const S
   double kappa = qp.n_dofs() ? qp.K.diagonal().cwiseAbs().maxCoeff() : 1.0;
   if (!(kappa > 0 && std::isfinite(kappa))) kappa = 1.0;
   double F0 = inf_norm(qp.f);
-  if (!(F0 > 0)) F0 = kappa * inf_norm(qp.g);  // no load: the force that closes the gaps
+  if (!(F0 > 0)) F0 = kappa * inf_norm(qp.g);    // no load: the force that closes the gaps
   if (!(F0 > 0 && std::isfinite(F0))) F0 = 1.0;  // nothing to measure by
   const double L0 = F0 / kappa;
   const double tol = options.tol;
@@ -271,43 +271,55 @@ struct Outcome {
 Outcome outcome_of(Ipopt::ApplicationReturnStatus code) {
   using S = Status;
   switch (code) {
-    case Ipopt::Solve_Succeeded: return {S::Converged, "Solve_Succeeded", ""};
+    case Ipopt::Solve_Succeeded:
+      return {S::Converged, "Solve_Succeeded", ""};
     case Ipopt::Solved_To_Acceptable_Level:
-      return {S::NumericalError, "Solved_To_Acceptable_Level", "only Ipopt's acceptable tolerances were met; round-off limits the accuracy, try a larger tol"};
+      return {S::NumericalError, "Solved_To_Acceptable_Level",
+              "only Ipopt's acceptable tolerances were met; round-off limits the accuracy, try a larger tol"};
     case Ipopt::Infeasible_Problem_Detected:
       return {S::NumericalError, "Infeasible_Problem_Detected", "the contact constraints admit no displacement"};
     case Ipopt::Search_Direction_Becomes_Too_Small:
-      return {S::NumericalError, "Search_Direction_Becomes_Too_Small", "no further progress in double precision; try a larger tol"};
-    case Ipopt::Diverging_Iterates: return {S::Diverged, "Diverging_Iterates", "the iterates grew without bound"};
-    case Ipopt::User_Requested_Stop: return {S::NumericalError, "User_Requested_Stop", "stopped by a callback"};
-    case Ipopt::Feasible_Point_Found: return {S::NumericalError, "Feasible_Point_Found", "Ipopt only looked for a feasible point"};
+      return {S::NumericalError, "Search_Direction_Becomes_Too_Small",
+              "no further progress in double precision; try a larger tol"};
+    case Ipopt::Diverging_Iterates:
+      return {S::Diverged, "Diverging_Iterates", "the iterates grew without bound"};
+    case Ipopt::User_Requested_Stop:
+      return {S::NumericalError, "User_Requested_Stop", "stopped by a callback"};
+    case Ipopt::Feasible_Point_Found:
+      return {S::NumericalError, "Feasible_Point_Found", "Ipopt only looked for a feasible point"};
     case Ipopt::Maximum_Iterations_Exceeded:
       return {S::MaxIterations, "Maximum_Iterations_Exceeded", "raise max_iterations"};
     case Ipopt::Restoration_Failed:
       return {S::NumericalError, "Restoration_Failed", "Ipopt's feasibility restoration failed"};
     case Ipopt::Error_In_Step_Computation:
-      return {S::NumericalError, "Error_In_Step_Computation", "the KKT system could not be solved; is K positive definite?"};
-    case Ipopt::Maximum_CpuTime_Exceeded: return {S::MaxIterations, "Maximum_CpuTime_Exceeded", "raise max_cpu_time"};
+      return {S::NumericalError, "Error_In_Step_Computation",
+              "the KKT system could not be solved; is K positive definite?"};
+    case Ipopt::Maximum_CpuTime_Exceeded:
+      return {S::MaxIterations, "Maximum_CpuTime_Exceeded", "raise max_cpu_time"};
     case Ipopt::Not_Enough_Degrees_Of_Freedom:
       return {S::NumericalError, "Not_Enough_Degrees_Of_Freedom", "more equations than unknowns"};
     case Ipopt::Invalid_Problem_Definition:
       return {S::NumericalError, "Invalid_Problem_Definition", "Ipopt rejected the problem's data"};
     case Ipopt::Invalid_Option:
-      return {S::NumericalError, "Invalid_Option", "an option was refused (linear solvers other than mumps are not in Debian's Ipopt)"};
+      return {S::NumericalError, "Invalid_Option",
+              "an option was refused (linear solvers other than mumps are not in Debian's Ipopt)"};
     case Ipopt::Invalid_Number_Detected:
       return {S::NumericalError, "Invalid_Number_Detected", "a NaN or Inf appeared in the evaluations"};
-    case Ipopt::Unrecoverable_Exception: return {S::NumericalError, "Unrecoverable_Exception", "Ipopt failed internally"};
+    case Ipopt::Unrecoverable_Exception:
+      return {S::NumericalError, "Unrecoverable_Exception", "Ipopt failed internally"};
     case Ipopt::NonIpopt_Exception_Thrown:
       return {S::NumericalError, "NonIpopt_Exception_Thrown", "an exception escaped an evaluation"};
     case Ipopt::Insufficient_Memory:
-      return {S::NumericalError, "Insufficient_Memory", "MUMPS ran out of memory; a coarser mesh or a larger mumps_mem_percent may help"};
-    case Ipopt::Internal_Error: return {S::NumericalError, "Internal_Error", "Ipopt failed internally"};
+      return {S::NumericalError, "Insufficient_Memory",
+              "MUMPS ran out of memory; a coarser mesh or a larger mumps_mem_percent may help"};
+    case Ipopt::Internal_Error:
+      return {S::NumericalError, "Internal_Error", "Ipopt failed internally"};
   }
   return {S::NumericalError, "an unknown return status", "Ipopt returned a code this version does not know"};
 }
 
 Ipopt::SmartPtr<Ipopt::IpoptApplication> configured_application(const QuadraticProgram& qp,
-                                                                 const SolveOptions& options) {
+                                                                const SolveOptions& options) {
   // Without the console journal nothing at all can be printed: keep it only when verbose.
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = new Ipopt::IpoptApplication(options.verbose);
   configure(*app, qp, options, options_for(Backend::Ipopt, options.backend_options));

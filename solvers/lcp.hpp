@@ -29,7 +29,7 @@ class LcpOperator {
   virtual ~LcpOperator() = default;
   virtual int size() const = 0;
   virtual VectorXd times(const VectorXd& x) const = 0;  // S x
-  virtual double diagonal(int i) const = 0;            // S_ii, or a positive stand-in
+  virtual double diagonal(int i) const = 0;             // S_ii, or a positive stand-in
   // x = S_AA⁻¹ b for the sorted index set A (b and x of size |A|; x holds a starting guess on
   // entry for iterative variants). False when S_AA is numerically singular.
   virtual bool solve_principal(const std::vector<int>& A, const VectorXd& b, VectorXd& x) const = 0;
@@ -68,7 +68,7 @@ class MatrixFreeLcpOperator : public LcpOperator {
 };
 
 struct LcpOptions {
-  double tol = 1e-10;       // stop when residual(λ, w) ≤ tol
+  double tol = 1e-10;        // stop when residual(λ, w) ≤ tol
   int max_iterations = 100;  // active-set and projected Newton steps together
   // The relative residual of a feasible iterate (λ ≥ 0, w = Sλ − h). Empty: the natural
   // residual ‖min(λ, w)‖∞ relative to max(‖λ‖∞, ‖h‖∞, ‖w‖∞).
@@ -88,13 +88,13 @@ enum class LcpOutcome {
 
 struct LcpResult {
   LcpOutcome outcome = LcpOutcome::MaxIterations;
-  VectorXd lambda, w;        // the best iterate: λ ≥ 0, w = Sλ − h
-  double residual = 0;       // residual(λ, w)
-  int iterations = 0;        // active-set plus projected Newton steps (one solve with S_AA each)
+  VectorXd lambda, w;   // the best iterate: λ ≥ 0, w = Sλ − h
+  double residual = 0;  // residual(λ, w)
+  int iterations = 0;   // active-set plus projected Newton steps (one solve with S_AA each)
   int active_set_steps = 0;
-  int newton_steps = 0;      // safeguard steps
+  int newton_steps = 0;  // safeguard steps
   bool cycle_detected = false;
-  int active = 0;            // rows with λ_i > 0 at the end
+  int active = 0;  // rows with λ_i > 0 at the end
 };
 
 LcpResult solve_lcp(const LcpOperator& S, const VectorXd& h, const LcpOptions& options);

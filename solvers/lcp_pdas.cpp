@@ -213,8 +213,7 @@ LcpResult solve_lcp(const LcpOperator& S, const VectorXd& h, const LcpOptions& o
           trial = (lambda + alpha * d).cwiseMax(0.0);
           trial_w = S.times(trial) - h;
           double expected = 0;
-          for (int i = 0; i < m; ++i)
-            expected += is_free[i] ? -alpha * w[i] * d[i] : w[i] * (lambda[i] - trial[i]);
+          for (int i = 0; i < m; ++i) expected += is_free[i] ? -alpha * w[i] * d[i] : w[i] * (lambda[i] - trial[i]);
           if (q - merit(trial, trial_w, h) >= kArmijo * expected && expected >= 0) {
             decreased = true;
             break;

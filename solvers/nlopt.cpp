@@ -37,10 +37,14 @@ const std::pair<NloptOptions::Algorithm, const char*> kAlgorithmNames[] = {
 
 nlopt::algorithm native(NloptOptions::Algorithm algorithm) {
   switch (algorithm) {
-    case NloptOptions::Algorithm::Lbfgs: return nlopt::LD_LBFGS;
-    case NloptOptions::Algorithm::Ccsaq: return nlopt::LD_CCSAQ;
-    case NloptOptions::Algorithm::Mma: return nlopt::LD_MMA;
-    case NloptOptions::Algorithm::Slsqp: return nlopt::LD_SLSQP;
+    case NloptOptions::Algorithm::Lbfgs:
+      return nlopt::LD_LBFGS;
+    case NloptOptions::Algorithm::Ccsaq:
+      return nlopt::LD_CCSAQ;
+    case NloptOptions::Algorithm::Mma:
+      return nlopt::LD_MMA;
+    case NloptOptions::Algorithm::Slsqp:
+      return nlopt::LD_SLSQP;
   }
   return nlopt::LD_LBFGS;
 }
@@ -106,8 +110,8 @@ class Dual {
     const double uKu = u.dot(qp_.f - qp_.B.transpose() * lambda), fu = qp_.f.dot(u);
     const double J = 0.5 * uKu - fu, gap = -lambda.dot(point.r);
     const double energy = std::max({std::abs(J), std::abs(J - gap), 0.5 * std::abs(uKu), std::abs(fu)});
-    point.residual = std::max({relative(violation, L), relative(complementarity, lambda_scale * L),
-                               relative(std::abs(gap), energy)});
+    point.residual = std::max(
+        {relative(violation, L), relative(complementarity, lambda_scale * L), relative(std::abs(gap), energy)});
     if (!std::isfinite(point.residual)) point.residual = std::numeric_limits<double>::infinity();
     if (options_.observer) options_.observer(evaluations, u, lambda);
     if (point.residual < best.residual) best = point;
@@ -137,7 +141,7 @@ class Dual {
 
   int evaluations = 0;
   Point best, origin;
-  double scale = 1.0;  // of the objective and its gradient in the current run
+  double scale = 1.0;               // of the objective and its gradient in the current run
   nlopt::opt* optimizer = nullptr;  // the run in progress, stopped once the rule is met
 
  private:
@@ -167,19 +171,32 @@ nlopt::result run(nlopt::opt& optimizer, std::vector<double>& x) {
 
 const char* name_of(nlopt::result code) {
   switch (code) {
-    case nlopt::FAILURE: return "NLOPT_FAILURE";
-    case nlopt::INVALID_ARGS: return "NLOPT_INVALID_ARGS";
-    case nlopt::OUT_OF_MEMORY: return "NLOPT_OUT_OF_MEMORY";
-    case nlopt::ROUNDOFF_LIMITED: return "NLOPT_ROUNDOFF_LIMITED";
-    case nlopt::FORCED_STOP: return "NLOPT_FORCED_STOP";
-    case nlopt::NUM_FAILURES: return "NLOPT_NUM_FAILURES";
-    case nlopt::SUCCESS: return "NLOPT_SUCCESS";
-    case nlopt::STOPVAL_REACHED: return "NLOPT_STOPVAL_REACHED";
-    case nlopt::FTOL_REACHED: return "NLOPT_FTOL_REACHED";
-    case nlopt::XTOL_REACHED: return "NLOPT_XTOL_REACHED";
-    case nlopt::MAXEVAL_REACHED: return "NLOPT_MAXEVAL_REACHED";
-    case nlopt::MAXTIME_REACHED: return "NLOPT_MAXTIME_REACHED";
-    case nlopt::NUM_RESULTS: return "NLOPT_NUM_RESULTS";
+    case nlopt::FAILURE:
+      return "NLOPT_FAILURE";
+    case nlopt::INVALID_ARGS:
+      return "NLOPT_INVALID_ARGS";
+    case nlopt::OUT_OF_MEMORY:
+      return "NLOPT_OUT_OF_MEMORY";
+    case nlopt::ROUNDOFF_LIMITED:
+      return "NLOPT_ROUNDOFF_LIMITED";
+    case nlopt::FORCED_STOP:
+      return "NLOPT_FORCED_STOP";
+    case nlopt::NUM_FAILURES:
+      return "NLOPT_NUM_FAILURES";
+    case nlopt::SUCCESS:
+      return "NLOPT_SUCCESS";
+    case nlopt::STOPVAL_REACHED:
+      return "NLOPT_STOPVAL_REACHED";
+    case nlopt::FTOL_REACHED:
+      return "NLOPT_FTOL_REACHED";
+    case nlopt::XTOL_REACHED:
+      return "NLOPT_XTOL_REACHED";
+    case nlopt::MAXEVAL_REACHED:
+      return "NLOPT_MAXEVAL_REACHED";
+    case nlopt::MAXTIME_REACHED:
+      return "NLOPT_MAXTIME_REACHED";
+    case nlopt::NUM_RESULTS:
+      return "NLOPT_NUM_RESULTS";
   }
   return "an unknown NLopt result";
 }
@@ -200,12 +217,14 @@ Next next_after(nlopt::result code) {
     case nlopt::FORCED_STOP:  // only our rule forces a stop: this one came from elsewhere
       return Next::Fail;
     case nlopt::MAXEVAL_REACHED:
-    case nlopt::MAXTIME_REACHED: return Next::MaxIterations;
+    case nlopt::MAXTIME_REACHED:
+      return Next::MaxIterations;
     case nlopt::FAILURE:
     case nlopt::INVALID_ARGS:
     case nlopt::OUT_OF_MEMORY:
     case nlopt::NUM_FAILURES:
-    case nlopt::NUM_RESULTS: return Next::Fail;
+    case nlopt::NUM_RESULTS:
+      return Next::Fail;
   }
   return Next::Fail;
 }
@@ -251,9 +270,9 @@ SolveResult solve_nlopt(const QuadraticProgram& qp, const SolveOptions& options)
         [](unsigned n, const double* x, double* gradient, void* data) {
           Dual& dual = *static_cast<Dual*>(data);
           const Dual::Point point = dual.evaluate(Eigen::Map<const VectorXd>(x, n));
-          if (gradient) Eigen::Map<VectorXd>(gradient, n) = -dual.scale * point.r;  // ∇(−θ)
+          if (gradient) Eigen::Map<VectorXd>(gradient, n) = -dual.scale * point.r;           // ∇(−θ)
           if (point.residual <= dual.tol() && dual.optimizer) dual.optimizer->force_stop();  // our rule is met
-          if (!dual.solver_ok() && dual.optimizer) dual.optimizer->force_stop();  // a solve with K failed
+          if (!dual.solver_ok() && dual.optimizer) dual.optimizer->force_stop();             // a solve with K failed
           return dual.objective(point);
         },
         &dual);
@@ -282,17 +301,18 @@ SolveResult solve_nlopt(const QuadraticProgram& qp, const SolveOptions& options)
                      " evaluations: a solve with K failed: " + result.K_factor->message();
   } else if (converged) {
     result.status = Status::Converged;
-    result.message = "converged: " + algorithm + " on the dual; primal violation, complementarity and duality gap below " +
+    result.message = "converged: " + algorithm +
+                     " on the dual; primal violation, complementarity and duality gap below " +
                      short_number(options.tol) + " after " + std::to_string(dual.evaluations) + " evaluations";
   } else if (next == Next::MaxIterations) {
     result.status = Status::MaxIterations;
-    result.message = algorithm + " stopped after " + std::to_string(dual.evaluations) +
-                     " evaluations (" + name_of(last) + ") with residual " + short_number(dual.best.residual) +
-                     "; raise max_iterations";
+    result.message = algorithm + " stopped after " + std::to_string(dual.evaluations) + " evaluations (" +
+                     name_of(last) + ") with residual " + short_number(dual.best.residual) + "; raise max_iterations";
   } else {
     result.status = Status::NumericalError;
     result.message = algorithm + " stalled at residual " + short_number(dual.best.residual) + " (" + name_of(last) +
-                     ") after " + std::to_string(dual.evaluations) + " evaluations; try a larger tol or another algorithm";
+                     ") after " + std::to_string(dual.evaluations) +
+                     " evaluations; try a larger tol or another algorithm";
   }
   return result;
 }

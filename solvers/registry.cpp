@@ -23,18 +23,18 @@ LinearSolverOptions linear_solver_options(const QuadraticProgram& qp, const Solv
   return settings;
 }
 
-std::shared_ptr<const LinearSolver> factor_of_K(const QuadraticProgram& qp,
-                                                const SolveOptions& options, Timings& timings,
-                                                std::string& message) {
+std::shared_ptr<const LinearSolver> factor_of_K(const QuadraticProgram& qp, const SolveOptions& options,
+                                                Timings& timings, std::string& message) {
   if (options.K_factor) return options.K_factor;
   Stopwatch clock;
   std::shared_ptr<const LinearSolver> factor = make_linear_solver(qp.K, linear_solver_options(qp, options));
   timings.add("factorize", clock.seconds());
   if (!factor->ok()) {
-    message = options.linear_solver == LinearSolverKind::Cholmod
-                  ? "the stiffness matrix K could not be factorised: " + factor->message() +
-                        " (is the body restrained against rigid motion?)"
-                  : "the " + to_string(options.linear_solver) + " solver of K could not be set up: " + factor->message();
+    message =
+        options.linear_solver == LinearSolverKind::Cholmod
+            ? "the stiffness matrix K could not be factorised: " + factor->message() +
+                  " (is the body restrained against rigid motion?)"
+            : "the " + to_string(options.linear_solver) + " solver of K could not be set up: " + factor->message();
     return nullptr;
   }
   return factor;
@@ -55,11 +55,16 @@ namespace {
 
 SolveResult dispatch(const QuadraticProgram& qp, const SolveOptions& options) {
   switch (options.backend) {
-    case Backend::Uzawa: return solve_uzawa(qp, options);
-    case Backend::UzawaAccelerated: return solve_uzawa_accelerated(qp, options);
-    case Backend::Ipopt: return solve_ipopt(qp, options);
-    case Backend::Nlopt: return solve_nlopt(qp, options);
-    case Backend::ActiveSet: return solve_active_set(qp, options);
+    case Backend::Uzawa:
+      return solve_uzawa(qp, options);
+    case Backend::UzawaAccelerated:
+      return solve_uzawa_accelerated(qp, options);
+    case Backend::Ipopt:
+      return solve_ipopt(qp, options);
+    case Backend::Nlopt:
+      return solve_nlopt(qp, options);
+    case Backend::ActiveSet:
+      return solve_active_set(qp, options);
   }
   throw InputError("backend", "= " + std::to_string(static_cast<int>(options.backend)) + ": not a backend");
 }
@@ -82,9 +87,15 @@ void validate_options(const SolveOptions& options) {
       reject_options(options.backend, options.backend_options,
                      "its step is --rho or solver.rho (address other backends' options as ipopt.key=value)");
       break;
-    case Backend::Ipopt: check_ipopt_options(options); break;
-    case Backend::Nlopt: check_nlopt_options(options); break;
-    case Backend::ActiveSet: check_active_set_options(options); break;
+    case Backend::Ipopt:
+      check_ipopt_options(options);
+      break;
+    case Backend::Nlopt:
+      check_nlopt_options(options);
+      break;
+    case Backend::ActiveSet:
+      check_active_set_options(options);
+      break;
   }
 }
 
@@ -95,19 +106,26 @@ void validate_options(const SolveOptions& options) { detail::validate_options(op
 
 bool backend_available(Backend backend) {
   switch (backend) {
-    case Backend::Uzawa: return true;
-    case Backend::UzawaAccelerated: return true;
+    case Backend::Uzawa:
+      return true;
+    case Backend::UzawaAccelerated:
+      return true;
 #ifdef CONTACTQP_HAVE_IPOPT  // set by CMake when Ipopt was found (CONTACTQP_WITH_IPOPT)
-    case Backend::Ipopt: return true;
+    case Backend::Ipopt:
+      return true;
 #else
-    case Backend::Ipopt: return false;
+    case Backend::Ipopt:
+      return false;
 #endif
 #ifdef CONTACTQP_HAVE_NLOPT
-    case Backend::Nlopt: return true;
+    case Backend::Nlopt:
+      return true;
 #else
-    case Backend::Nlopt: return false;
+    case Backend::Nlopt:
+      return false;
 #endif
-    case Backend::ActiveSet: return true;
+    case Backend::ActiveSet:
+      return true;
   }
   return false;
 }
@@ -134,8 +152,8 @@ SolveResult solve(const QuadraticProgram& qp, const SolveOptions& options) {
   }
 
   // The final guard: no NaN or Inf ever leaves solve(), nor numbers whose energy overflows.
-  if (result.u.size() != qp.n_dofs() || !result.u.allFinite() ||
-      result.lambda.size() != qp.n_constraints() || !result.lambda.allFinite()) {
+  if (result.u.size() != qp.n_dofs() || !result.u.allFinite() || result.lambda.size() != qp.n_constraints() ||
+      !result.lambda.allFinite()) {
     if (result.status == Status::Converged) {
       result.status = Status::NumericalError;
       result.message = "the backend returned a solution that is not finite";

@@ -41,7 +41,7 @@ UzawaRun accelerated_loop(const UzawaContext& context, const UzawaStep& step, in
   IterationMonitor monitor(context, step, first_k, run);
   const double beta_cap = momentum_cap(step);
   VectorXd lambda = VectorXd::Zero(qp.n_constraints());  // λ_k
-  VectorXd y = lambda;                                    // the extrapolated point y_k
+  VectorXd y = lambda;                                   // the extrapolated point y_k
   VectorXd u = context.u_free;
   double t = 1;
   int restarts = 0;

@@ -60,8 +60,12 @@ UzawaStep choose_step(const QuadraticProgram& qp, const LinearSolver& K_factor, 
       // Without a spectrum (no rows) there is no iteration for the step to change.
       step.rho = !known ? 1.0 : variant == UzawaVariant::Plain ? step.rho_opt : 0.5 * step.rho_max;
       break;
-    case UzawaOptions::RhoRule::Absolute: step.rho = uzawa.rho; break;
-    case UzawaOptions::RhoRule::FractionOfMax: step.rho = known ? uzawa.rho * step.rho_max : uzawa.rho; break;
+    case UzawaOptions::RhoRule::Absolute:
+      step.rho = uzawa.rho;
+      break;
+    case UzawaOptions::RhoRule::FractionOfMax:
+      step.rho = known ? uzawa.rho * step.rho_max : uzawa.rho;
+      break;
   }
   // The iterates move by about ρ times the gradient per iteration, so a stretch without
   // progress is measured in ρ·k: below the automatic step the window grows as 1/ρ. With 200
@@ -92,29 +96,33 @@ std::string closing_message(const SolveOptions& options, UzawaVariant variant, c
   // The backend sees a scaled QP: quote ρ in the caller's units.
   const double unit = options.uzawa.rho_unit;
   const bool known = std::isfinite(step.rho_max);
-  const std::string rho = "ρ = " + format(step.rho * unit) + (known ? " (" + format(step.rho / step.rho_max) + " ρ_max)" : "");
+  const std::string rho =
+      "ρ = " + format(step.rho * unit) + (known ? " (" + format(step.rho / step.rho_max) + " ρ_max)" : "");
   const std::string rho_max = known ? "ρ_max = 2/λ_max(S) ≈ " + format(step.rho_max * unit) : "no ρ_max (S = 0)";
-  const std::string note = fell_back ? "; the step from the violated rows did not converge, so ρ was re-chosen from every row" : "";
+  const std::string note =
+      fell_back ? "; the step from the violated rows did not converge, so ρ was re-chosen from every row" : "";
   switch (run.status) {
     case Status::Converged:
       return "converged: relative change of λ and primal violation below " + format(options.tol) + note;
     case Status::MaxIterations:
       return "stopped after " + std::to_string(run.iterations) + " iterations at relative residual " +
              format(run.residual) + " (best " + format(run.best_residual) + ", tol " + format(options.tol) + ") with " +
-             rho + "; " + (known ? "a larger ρ (up to " + rho_max + ")" : "a larger ρ") + " or more iterations may help" + note;
+             rho + "; " + (known ? "a larger ρ (up to " + rho_max + ")" : "a larger ρ") +
+             " or more iterations may help" + note;
     case Status::Diverged:
       return "diverged after " + std::to_string(run.iterations) + " iterations: " + rho + " is too large (" + rho_max +
              (variant == UzawaVariant::Accelerated ? "; the accelerated iteration needs about ρ ≤ ρ_max/2" : "") +
              "); use --rho auto or a smaller ρ" + note;
-    case Status::NumericalError: break;
+    case Status::NumericalError:
+      break;
   }
   return "numerical error";
 }
 
 }  // namespace
 
-double uzawa_residual(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& r,
-                      const VectorXd& lambda_from, const VectorXd& lambda_next) {
+double uzawa_residual(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& r, const VectorXd& lambda_from,
+                      const VectorXd& lambda_next) {
   const double change = inf_norm(lambda_next - lambda_from);
   const double lambda_size = inf_norm(lambda_next);
   const double rel_change = lambda_size > 0 ? change / lambda_size : change;
@@ -140,8 +148,8 @@ DivergenceGuard::Verdict DivergenceGuard::check(int k, double residual, const Ve
   const double negligible = kFlipFloor * std::max(inf_norm(lambda_from), inf_norm(lambda_next));
   bool alternating = false;
   for (int i = 0; i < lambda_next.size(); ++i) {
-    const bool flip = (lambda_next[i] > 0) != (lambda_from[i] > 0) &&
-                      std::max(lambda_next[i], lambda_from[i]) > negligible;
+    const bool flip =
+        (lambda_next[i] > 0) != (lambda_from[i] > 0) && std::max(lambda_next[i], lambda_from[i]) > negligible;
     flips_[i] = flip ? flips_[i] + 1 : 0;
     alternating = alternating || flips_[i] >= kFlipWindow;
   }
@@ -190,8 +198,7 @@ void IterationMonitor::finish(int k) {
   run_.best_residual = guard_.best();
 }
 
-SolveResult run_uzawa(const QuadraticProgram& qp, const SolveOptions& options, UzawaVariant variant,
-                      UzawaLoop loop) {
+SolveResult run_uzawa(const QuadraticProgram& qp, const SolveOptions& options, UzawaVariant variant, UzawaLoop loop) {
   SolveResult result;
   result.K_factor = factor_of_K(qp, options, result.timings, result.message);
   if (!result.K_factor) return result;

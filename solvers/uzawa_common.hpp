@@ -23,10 +23,10 @@ enum class UzawaVariant { Plain, Accelerated };
 
 // The step and where it came from, in the backend's (scaled) units.
 struct UzawaStep {
-  double rho = 0;                                             // the step used
-  double rho_max = std::numeric_limits<double>::infinity();   // 2/λ_max(S_R)
-  double rho_opt = std::numeric_limits<double>::infinity();   // 2/(λ_min(S_R) + λ_max(S_R))
-  bool all_rows = true;                                       // R is every row (else the working set)
+  double rho = 0;                                            // the step used
+  double rho_max = std::numeric_limits<double>::infinity();  // 2/λ_max(S_R)
+  double rho_opt = std::numeric_limits<double>::infinity();  // 2/(λ_min(S_R) + λ_max(S_R))
+  bool all_rows = true;                                      // R is every row (else the working set)
   SpectrumEstimate spectrum;
   // Iterations without progress that count as not converging (DivergenceGuard): 200 at the
   // automatic step or above, more in proportion below it (see choose_step).
@@ -36,8 +36,8 @@ struct UzawaStep {
 // The stopping rule of both variants: the projected step λ_next − λ_from, relative to λ_next
 // (∞-norm), and the primal violation max(0, Bu − g), relative to the displacement (the length
 // scale of certificate.hpp). Converged when the larger of the two is ≤ tol.
-double uzawa_residual(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& r,
-                      const VectorXd& lambda_from, const VectorXd& lambda_next);
+double uzawa_residual(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& r, const VectorXd& lambda_from,
+                      const VectorXd& lambda_next);
 
 // Watches an iteration and says when to stop. Three signs that it will not converge:
 //  - it expands: the step ‖λ_next − λ_from‖₂ or the relative residual grows a millionfold
@@ -111,12 +111,10 @@ class IterationMonitor {
 
 // One run from λ = 0 with a fixed step; `first_k` numbers the iterates for the observer
 // (k = first_k + 1, ...) so that a restarted run continues the count.
-using UzawaLoop = UzawaRun (*)(const UzawaContext& context, const UzawaStep& step, int first_k,
-                               int max_iterations);
+using UzawaLoop = UzawaRun (*)(const UzawaContext& context, const UzawaStep& step, int first_k, int max_iterations);
 
 // The whole backend around a loop: factor K, choose ρ, run, fall back (with --rho auto) to
 // the step from every row when the working-set step does not converge, fill the result.
-SolveResult run_uzawa(const QuadraticProgram& qp, const SolveOptions& options, UzawaVariant variant,
-                      UzawaLoop loop);
+SolveResult run_uzawa(const QuadraticProgram& qp, const SolveOptions& options, UzawaVariant variant, UzawaLoop loop);
 
 }  // namespace contactqp::detail

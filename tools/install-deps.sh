@@ -3,6 +3,7 @@
 # Debian bookworm). Skips apt entirely when everything is already installed. clang and
 # libclang-rt-dev (compiler-rt: libFuzzer and clang's sanitizer runtimes) build the scene
 # parser's fuzzer; g++'s own sanitizer runtimes (libasan8, libubsan1) come with g++.
+# clang-format (14) checks that the tree is formatted (tools/check-format.sh, a ctest entry).
 # pybind11-dev, python3-dev (Python's headers) and python3-pybind11 build the contactqp Python
 # module for Debian's /usr/bin/python3; python3-scipy (scipy.sparse in) and python3-pytest run
 # its tests. pybind11-dev does not depend on python3-dev, so both are listed. doxygen builds the
@@ -16,7 +17,7 @@ packages="cmake g++ make pkg-config
   catch2 nlohmann-json3-dev libcli11-dev
   libgmsh-dev gmsh
   petsc-dev openmpi-bin libopenmpi-dev
-  clang libclang-rt-dev
+  clang libclang-rt-dev clang-format
   python3 python3-numpy python3-matplotlib python3-vtk9 python3-getfem
   python3-dev pybind11-dev python3-pybind11 python3-scipy python3-pytest
   doxygen"

@@ -28,19 +28,19 @@ std::string context_json(const std::string& benchmark, const std::string& extra)
   std::array<char, 32> date{};
   const std::time_t now = std::time(nullptr);
   std::strftime(date.data(), date.size(), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-  nlohmann::json context = {
-      {"benchmark", benchmark},
-      {"git_revision", first_line_of(git + "rev-parse HEAD")},
-      {"git_dirty", !first_line_of(git + "status --porcelain --untracked-files=no").empty()},
 #ifdef __clang__
-      {"compiler", "clang " __clang_version__},
+  const char* compiler = "clang " __clang_version__;
 #else
-      {"compiler", "gcc " __VERSION__},
+  const char* compiler = "gcc " __VERSION__;
 #endif
-      {"build_type", CONTACTQP_BUILD_TYPE},
-      {"cores", std::thread::hardware_concurrency()},
-      {"load_average", first_line_of("cut -d' ' -f1-3 /proc/loadavg")},
-      {"date_utc", date.data()}};
+  nlohmann::json context = {{"benchmark", benchmark},
+                            {"git_revision", first_line_of(git + "rev-parse HEAD")},
+                            {"git_dirty", !first_line_of(git + "status --porcelain --untracked-files=no").empty()},
+                            {"compiler", compiler},
+                            {"build_type", CONTACTQP_BUILD_TYPE},
+                            {"cores", std::thread::hardware_concurrency()},
+                            {"load_average", first_line_of("cut -d' ' -f1-3 /proc/loadavg")},
+                            {"date_utc", date.data()}};
   context.merge_patch(nlohmann::json::parse(extra));
   return context.dump(2) + "\n";
 }

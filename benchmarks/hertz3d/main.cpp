@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "context.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/io.hpp"
 #include "contactqp/post.hpp"
 #include "contactqp/solve.hpp"
+#include "context.hpp"
 #include "out_arguments.hpp"
 
 using namespace contactqp;
@@ -58,10 +58,9 @@ struct Family {
 void sphere_study(bool quick, std::ostringstream& csv) {
   csv << "order,contact_size,nodes,elements,dofs,constraints,status,iterations,force,contact_radius,max_pressure,"
          "error_contact_radius,error_max_pressure,error_l2,seconds\n";
-  const std::vector<Family> families =
-      quick ? std::vector<Family>{{1, {0.04}}, {2, {0.06}}}
-            : std::vector<Family>{{1, {0.04, 0.028, 0.02, 0.014, 0.01, 0.007, 0.005}},
-                                  {2, {0.06, 0.04, 0.028, 0.02, 0.014, 0.01}}};
+  const std::vector<Family> families = quick ? std::vector<Family>{{1, {0.04}}, {2, {0.06}}}
+                                             : std::vector<Family>{{1, {0.04, 0.028, 0.02, 0.014, 0.01, 0.007, 0.005}},
+                                                                   {2, {0.06, 0.04, 0.028, 0.02, 0.014, 0.01}}};
   const std::string path = CONTACTQP_SOURCE_DIR "/scenes/hertz-sphere.json";
   const std::string text = read_text(path);
   for (const Family& family : families) {
@@ -91,8 +90,8 @@ void punch_study(bool quick, std::ostringstream& csv) {
     double block, contact_size;
   };
   const std::vector<Case> cases = quick ? std::vector<Case>{{10, 0.15}}
-                                        : std::vector<Case>{{10, 0.1}, {10, 0.07}, {10, 0.05}, {20, 0.1}, {20, 0.07},
-                                                            {20, 0.05}, {40, 0.1}, {40, 0.07}, {40, 0.05}};
+                                        : std::vector<Case>{{10, 0.1},  {10, 0.07}, {10, 0.05}, {20, 0.1}, {20, 0.07},
+                                                            {20, 0.05}, {40, 0.1},  {40, 0.07}, {40, 0.05}};
   const std::string path = CONTACTQP_SOURCE_DIR "/scenes/punch.json";
   const std::string text = read_text(path);
   for (const Case& c : cases) {
@@ -126,8 +125,9 @@ int main(int argc, char** argv) {
     punch_study(arguments.quick, punch);
     write_file_atomically(bench::output_path(arguments.out, "sphere.csv"), sphere.str());
     write_file_atomically(bench::output_path(arguments.out, "punch.csv"), punch.str());
-    write_file_atomically(arguments.out + "/context.json",
-                          bench::context_json("hertz3d", R"({"scenes": ["scenes/hertz-sphere.json", "scenes/punch.json"]})"));
+    write_file_atomically(
+        arguments.out + "/context.json",
+        bench::context_json("hertz3d", R"({"scenes": ["scenes/hertz-sphere.json", "scenes/punch.json"]})"));
     std::cout << "wrote sphere.csv, punch.csv and context.json in " << arguments.out << "\n";
   } catch (const InputError& error) {
     std::cerr << "bench_hertz3d: " << error.what() << "\n";

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "context.hpp"
 #include "contactqp/io.hpp"
 #include "contactqp/post.hpp"
 #include "contactqp/run.hpp"
 #include "contactqp/solve.hpp"
+#include "context.hpp"
 #include "out_arguments.hpp"
 
 using namespace contactqp;
@@ -27,11 +27,12 @@ struct Variant {
 };
 
 std::vector<Variant> variants(bool quick) {
-  if (quick) return {{"order2", "scenes/hertz-order2.json", "displacement"}, {"mixed", "scenes/hertz-order2.json", "mixed"}};
+  if (quick)
+    return {{"order2", "scenes/hertz-order2.json", "displacement"}, {"mixed", "scenes/hertz-order2.json", "mixed"}};
   return {
-      {"order1", "scenes/hertz.json", "displacement"},                    // 3 730 DOFs, the shipped Hertz scene
-      {"order2", "scenes/hertz-order2.json", "displacement"},             // 894 DOFs
-      {"mixed", "scenes/hertz-order2.json", "mixed"},                     // the same mesh, mixed
+      {"order1", "scenes/hertz.json", "displacement"},                     // 3 730 DOFs, the shipped Hertz scene
+      {"order2", "scenes/hertz-order2.json", "displacement"},              // 894 DOFs
+      {"mixed", "scenes/hertz-order2.json", "mixed"},                      // the same mesh, mixed
       {"order2_fine", "scenes/hertz-order2.json", "displacement", 0.004},  // 2 710 DOFs
       {"mixed_fine", "scenes/hertz-order2.json", "mixed", 0.004},
   };
@@ -73,19 +74,22 @@ int main(int argc, char** argv) {
       const ContactSummary& contact = report.contact;
       const auto& hertz = report.hertz;
       const double seconds = clock.seconds();
-      csv << variant.name << ',' << model.mesh.order << ',' << variant.formulation << ',' << scene.body.mesh.contact_size
-          << ',' << nu << ',' << qp.n_dofs() << ',' << qp.n_constraints() << ',' << to_string(result.status) << ','
-          << result.iterations << ',' << contact.total_force << ',' << (hertz ? hertz->error_half_width : NAN) << ','
-          << (hertz ? hertz->error_max_pressure : NAN) << ',' << (hertz ? hertz->error_l2 : NAN) << ',' << seconds
-          << '\n';
+      csv << variant.name << ',' << model.mesh.order << ',' << variant.formulation << ','
+          << scene.body.mesh.contact_size << ',' << nu << ',' << qp.n_dofs() << ',' << qp.n_constraints() << ','
+          << to_string(result.status) << ',' << result.iterations << ',' << contact.total_force << ','
+          << (hertz ? hertz->error_half_width : NAN) << ',' << (hertz ? hertz->error_max_pressure : NAN) << ','
+          << (hertz ? hertz->error_l2 : NAN) << ',' << seconds << '\n';
       std::cout << variant.name << " nu " << nu << ": " << qp.n_dofs() << " DOFs, b "
-                << (hertz ? 100 * hertz->error_half_width : NAN) << "%, p0 " << (hertz ? 100 * hertz->error_max_pressure : NAN)
-                << "%, L2 " << (hertz ? 100 * hertz->error_l2 : NAN) << "%, " << to_string(result.status) << std::endl;
+                << (hertz ? 100 * hertz->error_half_width : NAN) << "%, p0 "
+                << (hertz ? 100 * hertz->error_max_pressure : NAN) << "%, L2 " << (hertz ? 100 * hertz->error_l2 : NAN)
+                << "%, " << to_string(result.status) << std::endl;
     }
   }
   write_file_atomically(csv_path, csv.str());
-  write_file_atomically(out_directory + "/context.json",
-                        bench::context_json("incompressible", R"({"backend": "nlopt", "scenes": ["scenes/hertz.json", "scenes/hertz-order2.json"]})"));
+  write_file_atomically(
+      out_directory + "/context.json",
+      bench::context_json("incompressible",
+                          R"({"backend": "nlopt", "scenes": ["scenes/hertz.json", "scenes/hertz-order2.json"]})"));
   std::cout << "wrote " << csv_path << " and context.json\n";
   return 0;
 }

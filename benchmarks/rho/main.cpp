@@ -86,7 +86,8 @@ std::pair<double, double> block_spectrum(const Eigen::MatrixXd& S, const std::ve
   Eigen::MatrixXd block(rows.size(), rows.size());
   for (size_t i = 0; i < rows.size(); ++i)
     for (size_t j = 0; j < rows.size(); ++j) block(i, j) = S(rows[i], rows[j]);
-  const Eigen::VectorXd values = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(block, Eigen::EigenvaluesOnly).eigenvalues();
+  const Eigen::VectorXd values =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(block, Eigen::EigenvaluesOnly).eigenvalues();
   return {values.minCoeff(), values.maxCoeff()};
 }
 
@@ -175,15 +176,15 @@ int run(const Settings& settings) {
     const auto [a_min, a_max] = block_spectrum(S, active);
     const auto [all_min, all_max] = block_spectrum(S, all);
     const auto& d = reference.diagnostics;
-    meshes_csv += number(h) + "," + number(settings.far_field_ratio * h) + "," + std::to_string(qp.n_dofs()) + "," +
-                  std::to_string(qp.n_constraints()) + "," + std::to_string(working.size()) + "," +
-                  std::to_string(active.size()) + "," + number(d.at("lambda_min_S")) + "," + number(d.at("lambda_max_S")) +
-                  "," + number(d.at("spectrum_rows")) + "," + number(d.at("spectrum_solves")) + "," +
-                  number(reference.timings.get("spectrum")) + "," + number(w_min) + "," + number(w_max) + "," +
-                  number(a_min) + "," + number(a_max) + "," + number(all_min) + "," + number(all_max) + "," +
-                  number(d.at("rho_max")) + "," + number(d.at("rho_opt")) + "," + std::to_string(cap) + "," +
-                  number(factorize_seconds) + "," + number(one_solve_seconds) + "," +
-                  std::to_string(reference.iterations) + "," + number(reference_diff) + "\n";
+    meshes_csv +=
+        number(h) + "," + number(settings.far_field_ratio * h) + "," + std::to_string(qp.n_dofs()) + "," +
+        std::to_string(qp.n_constraints()) + "," + std::to_string(working.size()) + "," +
+        std::to_string(active.size()) + "," + number(d.at("lambda_min_S")) + "," + number(d.at("lambda_max_S")) + "," +
+        number(d.at("spectrum_rows")) + "," + number(d.at("spectrum_solves")) + "," +
+        number(reference.timings.get("spectrum")) + "," + number(w_min) + "," + number(w_max) + "," + number(a_min) +
+        "," + number(a_max) + "," + number(all_min) + "," + number(all_max) + "," + number(d.at("rho_max")) + "," +
+        number(d.at("rho_opt")) + "," + std::to_string(cap) + "," + number(factorize_seconds) + "," +
+        number(one_solve_seconds) + "," + std::to_string(reference.iterations) + "," + number(reference_diff) + "\n";
     std::cout << "h = " << h << ": " << qp.n_dofs() << " DOFs, " << qp.n_constraints() << " candidates, "
               << active.size() << " active; uzawa auto " << auto_iterations << " iterations, best of sweep "
               << best_plain << " at " << number(best_fraction) << " rho_max, uzawa_accel auto " << auto_accelerated
@@ -195,10 +196,15 @@ int run(const Settings& settings) {
   write_file_atomically(meshes_path, meshes_csv);
   // The scene relative to the source tree when it lies there, so that the context is portable.
   const std::string source_dir = CONTACTQP_SOURCE_DIR "/";
-  const std::string scene = settings.scene.rfind(source_dir, 0) == 0 ? settings.scene.substr(source_dir.size()) : settings.scene;
-  nlohmann::json extra = {{"scene", scene}, {"points", settings.points}, {"cap_factor", settings.cap_factor},
-                          {"tol", settings.tol}, {"far_field_ratio", settings.far_field_ratio},
-                          {"contact_sizes", settings.contact_sizes}, {"seconds", total.seconds()}};
+  const std::string scene =
+      settings.scene.rfind(source_dir, 0) == 0 ? settings.scene.substr(source_dir.size()) : settings.scene;
+  nlohmann::json extra = {{"scene", scene},
+                          {"points", settings.points},
+                          {"cap_factor", settings.cap_factor},
+                          {"tol", settings.tol},
+                          {"far_field_ratio", settings.far_field_ratio},
+                          {"contact_sizes", settings.contact_sizes},
+                          {"seconds", total.seconds()}};
   write_file_atomically(context_path, bench::context_json("rho", extra.dump()));
   std::cout << "wrote " << sweep_path << ", " << auto_path << ", " << meshes_path << ", " << context_path << "\n";
   return 0;

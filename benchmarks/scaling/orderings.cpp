@@ -33,7 +33,7 @@ int run(const Arguments& arguments) {
   make_directory(arguments.out);
   write_file_atomically(arguments.out + "/orderings-context.json",
                         context_json("orderings", "{\"benchmark\": \"orderings\", \"levels\": \"" + arguments.levels +
-                                     "\", \"repeats\": " + std::to_string(arguments.repeats) + "}"));
+                                                      "\", \"repeats\": " + std::to_string(arguments.repeats) + "}"));
   const std::string csv_path = arguments.out + "/orderings.csv";
   std::string csv =
       "level,dofs,constraints,ordering,repeat,analyse_seconds,factorize_seconds,solve_seconds,condense_seconds,"

@@ -17,10 +17,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <fcntl.h>
 #include <CLI/CLI.hpp>
 #include <cerrno>
 #include <cmath>
-#include <fcntl.h>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -152,9 +152,9 @@ bool read_vectors(const std::string& path, VectorXd& u, VectorXd& lambda) {
 struct ChildRun {
   Report report;
   bool killed = false;
-  int signal = 0;            // the signal that ended the child, if any
+  int signal = 0;  // the signal that ended the child, if any
   double wall_seconds = 0;
-  double maxrss_mb = NAN;    // getrusage of the child: both solves and what it inherited
+  double maxrss_mb = NAN;  // getrusage of the child: both solves and what it inherited
 };
 
 ChildRun fork_and_solve(const QuadraticProgram& qp, const SolveOptions& options, const std::string& vector_path,
@@ -289,9 +289,9 @@ int run(const Arguments& arguments) {
   extra.precision(10);
   std::string backend_list;
   for (Backend backend : backends) backend_list += (backend_list.empty() ? "\"" : ", \"") + to_string(backend) + "\"";
-  extra << "{\"benchmark\": \"scaling\", \"tol\": " << arguments.tol << ", \"time_cap_seconds\": "
-        << arguments.time_cap_seconds << ", \"levels\": \"" << arguments.levels << "\", \"scenes\": \"" << arguments.scenes
-        << "\", \"backends\": [" << backend_list
+  extra << "{\"benchmark\": \"scaling\", \"tol\": " << arguments.tol
+        << ", \"time_cap_seconds\": " << arguments.time_cap_seconds << ", \"levels\": \"" << arguments.levels
+        << "\", \"scenes\": \"" << arguments.scenes << "\", \"backends\": [" << backend_list
         << "], \"peak_memory\": \"VmHWM of the forked child, reset before each solve; includes the QP it was given\"}";
   write_file_atomically(arguments.out + "/context.json", context_json("scaling", extra.str()));
 
@@ -314,8 +314,8 @@ int run(const Arguments& arguments) {
       assemble_seconds = model.timings.get("assemble");
     }
     ::malloc_trim(0);  // the mesher's freed memory goes back before the children inherit the heap
-    std::cout << (item.source.empty() ? "" : "level ") << k << ": " << qp.n_dofs() << " DOFs, " << qp.n_constraints() << " candidates, mesh "
-              << number(mesh_seconds) << " s\n";
+    std::cout << (item.source.empty() ? "" : "level ") << k << ": " << qp.n_dofs() << " DOFs, " << qp.n_constraints()
+              << " candidates, mesh " << number(mesh_seconds) << " s\n";
 
     struct Row {
       Backend backend;
@@ -342,17 +342,19 @@ int run(const Arguments& arguments) {
                                  std::to_string(qp.n_dofs()) + " DOFs";
         } else if (row.run.signal) {
           row.status = "crashed";
-          row.reason = "signal " + std::to_string(row.run.signal) + (row.run.signal == SIGKILL ? " (out of memory?)" : "");
+          row.reason =
+              "signal " + std::to_string(row.run.signal) + (row.run.signal == SIGKILL ? " (out of memory?)" : "");
         } else {
           row.status = report_text(row.run.report, "status");
           row.reason = report_text(row.run.report, "message");
           if (row.status.empty()) row.status = "error";
         }
       }
-      std::cout << "  " << to_string(backend) << ": " << row.status << ", " << number(report_number(row.run.report, "phase:total"))
-                << " s (linear " << number(report_number(row.run.report, "linear_total_seconds")) << " s), iterations "
-                << report_text(row.run.report, "iterations") << ", peak " << number(report_number(row.run.report, "peak_rss_mb"))
-                << " MiB\n";
+      std::cout << "  " << to_string(backend) << ": " << row.status << ", "
+                << number(report_number(row.run.report, "phase:total")) << " s (linear "
+                << number(report_number(row.run.report, "linear_total_seconds")) << " s), iterations "
+                << report_text(row.run.report, "iterations") << ", peak "
+                << number(report_number(row.run.report, "peak_rss_mb")) << " MiB\n";
       rows.push_back(row);
     }
 

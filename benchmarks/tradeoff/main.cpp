@@ -269,9 +269,12 @@ void Study::run_mesh(MeshStudy& mesh, int mesh_index) {
             << short_number(mesh.one_solve_seconds) << " s" << std::endl;
 
   if (!settings_.peer_meshes.empty()) {
-    const std::string msh = (std::filesystem::absolute(settings_.peer_meshes) / ("mesh_o1_cs" + short_number(h) + ".msh")).string();
-    if (std::filesystem::exists(msh)) mesh.peer = bench::check_peer_mesh(scene_json, msh, mesh.model.mesh);
-    else std::cerr << "tradeoff: warning: no peer mesh " << msh << "\n";
+    const std::string msh =
+        (std::filesystem::absolute(settings_.peer_meshes) / ("mesh_o1_cs" + short_number(h) + ".msh")).string();
+    if (std::filesystem::exists(msh))
+      mesh.peer = bench::check_peer_mesh(scene_json, msh, mesh.model.mesh);
+    else
+      std::cerr << "tradeoff: warning: no peer mesh " << msh << "\n";
   }
 
   for (const Backend backend : backends_) {
@@ -320,7 +323,9 @@ std::string Study::runs_rows(const MeshStudy& mesh) const {
     const Run& r = mesh.runs[i];
     const bool solved = !r.skipped;
     const Certificate& c = r.certificate;
-    const auto hertz = [&](double HertzComparison::*field) { return solved && r.hertz ? number((*r.hertz).*field) : ""; };
+    const auto hertz = [&](double HertzComparison::*field) {
+      return solved && r.hertz ? number((*r.hertz).*field) : "";
+    };
     const auto solved_number = [&](double x) { return solved ? number(x) : ""; };
     rows += number(mesh.contact_size) + "," + std::to_string(mesh.qp.n_dofs()) + "," + to_string(r.backend) + "," +
             number(r.tol) + "," + status_name(r) + "," + (solved ? std::to_string(r.iterations) : "") + "," +
@@ -344,25 +349,28 @@ std::string Study::mesh_row(const MeshStudy& mesh, double difference_to_finest) 
   if (ref)
     for (const Run& r : mesh.runs)
       if (&r != ref && !r.skipped && r.status == Status::Converged && r.tol == ref->tol) {
-        spread_u = std::isfinite(spread_u) ? std::max(spread_u, relative_difference(r.u, ref->u)) : relative_difference(r.u, ref->u);
+        spread_u = std::isfinite(spread_u) ? std::max(spread_u, relative_difference(r.u, ref->u))
+                                           : relative_difference(r.u, ref->u);
         const double dl = relative_difference(r.lambda, ref->lambda);
         spread_lambda = std::isfinite(spread_lambda) ? std::max(spread_lambda, dl) : dl;
       }
   const auto of_ref = [&](double x) { return ref ? number(x) : ""; };
-  const auto hertz = [&](double HertzComparison::*field) { return ref && ref->hertz ? number((*ref->hertz).*field) : ""; };
-  std::string row = number(mesh.contact_size) + "," + number(mesh.size) + "," + std::to_string(mesh.model.mesh.n_nodes()) +
-                    "," + std::to_string(mesh.model.mesh.n_elements()) + "," + std::to_string(mesh.qp.n_dofs()) + "," +
-                    std::to_string(mesh.qp.n_constraints()) + "," + number(mesh.model.timings.get("mesh")) + "," +
-                    number(mesh.model.timings.get("model")) + "," + number(mesh.assemble_seconds) + "," +
-                    number(mesh.factorize_seconds) + "," + number(mesh.one_solve_seconds) + "," +
-                    (ref ? to_string(ref->backend) : "") + "," + of_ref(ref ? ref->tol : kNone) + "," +
-                    of_ref(ref ? ref->certificate.relative_gap : kNone) + "," +
-                    of_ref(ref ? ref->certificate.kkt_max() : kNone) + "," + number(spread_u) + "," +
-                    number(spread_lambda) + "," + of_ref(ref ? ref->contact.total_force : kNone) + "," +
-                    of_ref(ref ? ref->contact.half_width : kNone) + "," + of_ref(ref ? ref->contact.max_pressure : kNone) +
-                    "," + (ref ? std::to_string(ref->contact.contact_nodes) : "") + "," +
-                    hertz(&HertzComparison::error_half_width) + "," + hertz(&HertzComparison::error_max_pressure) + "," +
-                    hertz(&HertzComparison::error_l2) + "," + number(difference_to_finest) + ",";
+  const auto hertz = [&](double HertzComparison::*field) {
+    return ref && ref->hertz ? number((*ref->hertz).*field) : "";
+  };
+  std::string row =
+      number(mesh.contact_size) + "," + number(mesh.size) + "," + std::to_string(mesh.model.mesh.n_nodes()) + "," +
+      std::to_string(mesh.model.mesh.n_elements()) + "," + std::to_string(mesh.qp.n_dofs()) + "," +
+      std::to_string(mesh.qp.n_constraints()) + "," + number(mesh.model.timings.get("mesh")) + "," +
+      number(mesh.model.timings.get("model")) + "," + number(mesh.assemble_seconds) + "," +
+      number(mesh.factorize_seconds) + "," + number(mesh.one_solve_seconds) + "," +
+      (ref ? to_string(ref->backend) : "") + "," + of_ref(ref ? ref->tol : kNone) + "," +
+      of_ref(ref ? ref->certificate.relative_gap : kNone) + "," + of_ref(ref ? ref->certificate.kkt_max() : kNone) +
+      "," + number(spread_u) + "," + number(spread_lambda) + "," + of_ref(ref ? ref->contact.total_force : kNone) +
+      "," + of_ref(ref ? ref->contact.half_width : kNone) + "," + of_ref(ref ? ref->contact.max_pressure : kNone) +
+      "," + (ref ? std::to_string(ref->contact.contact_nodes) : "") + "," + hertz(&HertzComparison::error_half_width) +
+      "," + hertz(&HertzComparison::error_max_pressure) + "," + hertz(&HertzComparison::error_l2) + "," +
+      number(difference_to_finest) + ",";
   if (mesh.peer) {
     const bench::PeerMeshCheck& p = *mesh.peer;
     const bool same = p.nodes == mesh.model.mesh.n_nodes() && p.triangles == mesh.model.mesh.n_elements() &&
@@ -439,14 +447,17 @@ int Study::run() {
       {"repeat", settings_.repeat},
       {"repeat_below_seconds", settings_.repeat_below_seconds},
       {"max_iterations", settings_.max_iterations},
-      {"timing", "seconds = wall time of solve() from scratch (each backend factorises K itself), the fastest of "
-                 "`repeats` runs; assembly, model and meshing per mesh in meshes.csv"},
-      {"reference", "per mesh: the converged run at the tightest tolerance with the smallest certified |relative "
-                    "duality gap| (ties: smallest KKT residual)"},
+      {"timing",
+       "seconds = wall time of solve() from scratch (each backend factorises K itself), the fastest of "
+       "`repeats` runs; assembly, model and meshing per mesh in meshes.csv"},
+      {"reference",
+       "per mesh: the converged run at the tightest tolerance with the smallest certified |relative "
+       "duality gap| (ties: smallest KKT residual)"},
       {"seconds", clock_.seconds()}};
   write_file_atomically(context_path, bench::context_json("tradeoff", extra.dump()));
-  std::cerr << "tradeoff: " << runs_done_ << " runs on " << meshes.size() << " meshes in " << short_number(clock_.seconds())
-            << " s; wrote " << runs_path << ", " << meshes_path << ", " << context_path << std::endl;
+  std::cerr << "tradeoff: " << runs_done_ << " runs on " << meshes.size() << " meshes in "
+            << short_number(clock_.seconds()) << " s; wrote " << runs_path << ", " << meshes_path << ", "
+            << context_path << std::endl;
   return 0;
 }
 
@@ -455,17 +466,22 @@ int Study::run() {
 int main(int argc, char** argv) {
   Settings settings;
   CLI::App app{"bench_tradeoff: time against accuracy for every backend, tolerance and mesh of Hertz's cylinder"};
-  app.add_option("--scene", settings.scene, "Half-disc scene the meshes are generated from (its size/contact_size ratio is kept)");
+  app.add_option("--scene", settings.scene,
+                 "Half-disc scene the meshes are generated from (its size/contact_size ratio is kept)");
   app.add_option("--out", settings.out, "Directory for runs.csv, meshes.csv, context.json");
   app.add_option("--contact-sizes", settings.contact_sizes, "Element sizes along the contact arc")->delimiter(',');
   app.add_option("--tolerances", settings.tolerances, "Solver tolerances")->delimiter(',');
   app.add_option("--backends", settings.backends, "Comma-separated backends (default: every one built in)");
-  app.add_option("--time-cap", settings.time_cap_seconds, "Seconds: a slower run ends its backend's sweep on that mesh");
-  app.add_option("--repeat", settings.repeat, "Runs faster than --repeat-below are repeated up to this many times; the fastest counts");
+  app.add_option("--time-cap", settings.time_cap_seconds,
+                 "Seconds: a slower run ends its backend's sweep on that mesh");
+  app.add_option("--repeat", settings.repeat,
+                 "Runs faster than --repeat-below are repeated up to this many times; the fastest counts");
   app.add_option("--repeat-below", settings.repeat_below_seconds, "Seconds, see --repeat");
   app.add_option("--max-iterations", settings.max_iterations, "Iteration limit of every run");
-  app.add_option("--peer-meshes", settings.peer_meshes, "Directory with GetFEM's mesh_o1_cs<h>.msh: check they are these meshes");
-  app.add_flag("--smoke", settings.smoke, "One coarse mesh, two tolerances, no repeats: checks that the benchmark runs");
+  app.add_option("--peer-meshes", settings.peer_meshes,
+                 "Directory with GetFEM's mesh_o1_cs<h>.msh: check they are these meshes");
+  app.add_flag("--smoke", settings.smoke,
+               "One coarse mesh, two tolerances, no repeats: checks that the benchmark runs");
   CLI11_PARSE(app, argc, argv);
   if (settings.smoke) {
     settings.contact_sizes = {0.016};

@@ -10,7 +10,7 @@
 namespace contactqp::bench {
 
 struct PeerMeshCheck {
-  std::string file;  // the .msh read
+  std::string file;                                         // the .msh read
   int nodes = 0, triangles = 0, dofs = 0, constraints = 0;  // of the model built on it
   // The largest distance from a node of `mesh` to the nearest node of the file's mesh (length);
   // 0 when both have the same nodes. +inf when a node has no partner within 1e-9 of the size.

@@ -7,7 +7,8 @@ namespace contactqp::bench {
 namespace {
 
 // ∫ (p_a − p_b)² ds and ∫ p_b² ds, piece by piece between the breaks.
-std::pair<double, double> integrals(const std::vector<ContactProfilePoint>& a, const std::vector<ContactProfilePoint>& b) {
+std::pair<double, double> integrals(const std::vector<ContactProfilePoint>& a,
+                                    const std::vector<ContactProfilePoint>& b) {
   std::vector<double> breaks;
   for (const auto* profile : {&a, &b})
     for (const ContactProfilePoint& point : *profile) breaks.push_back(point.s);

@@ -31,8 +31,8 @@ int main() {
     options.tol = 1e-10;
     const SolveResult result = solve(qp, options);
     const Certificate certificate = certify(qp, result.u, result.lambda);
-    const double error = std::max({std::abs(result.u[0] - 0.5), std::abs(result.u[1] - 0.75),
-                                   std::abs(result.lambda[0] - 0.75)});
+    const double error =
+        std::max({std::abs(result.u[0] - 0.5), std::abs(result.u[1] - 0.75), std::abs(result.lambda[0] - 0.75)});
     const bool ok = result.status == Status::Converged && error < 1e-8 && certificate.kkt_max() < 1e-8;
     std::printf("%-12s %-10s u = (%.10f, %.10f), lambda = %.10f, KKT %.1e: %s\n", to_string(backend).c_str(),
                 to_string(result.status).c_str(), result.u[0], result.u[1], result.lambda[0], certificate.kkt_max(),

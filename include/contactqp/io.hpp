@@ -33,10 +33,10 @@ struct RunReport {
   ContactSummary contact;
   std::optional<HertzComparison> hertz;
   std::optional<PunchComparison> boussinesq;  // 3D scenes pressed by a flat punch
-  std::vector<Reaction> reactions;    // one per displacement load
-  Timings timings;                    // every phase: mesh, assemble, factorize, solve, ..., total
-  bool no_contact = false;            // a linear solve with the contact rows dropped (--no-contact)
-  std::vector<std::string> warnings;  // also printed on stderr
+  std::vector<Reaction> reactions;            // one per displacement load
+  Timings timings;                            // every phase: mesh, assemble, factorize, solve, ..., total
+  bool no_contact = false;                    // a linear solve with the contact rows dropped (--no-contact)
+  std::vector<std::string> warnings;          // also printed on stderr
 };
 
 // The result JSON (docs/cli.md, "Result file"). Numbers that are not finite are written as null.

@@ -22,7 +22,7 @@ enum class LinearSolverKind {
 std::string to_string(LinearSolverKind kind);  // "cholmod", "petsc"
 // "petsc" -> LinearSolverKind::Petsc. Unknown names throw InputError(field, "... valid: cholmod, petsc").
 LinearSolverKind parse_linear_solver(const std::string& name, const std::string& field);
-std::vector<LinearSolverKind> all_linear_solvers();  // every enum value, in declaration order
+std::vector<LinearSolverKind> all_linear_solvers();   // every enum value, in declaration order
 bool linear_solver_available(LinearSolverKind kind);  // false when its library was not built in
 
 // The fill-reducing ordering of a direct factorisation. Measured on the Hertz meshes up to
@@ -40,11 +40,11 @@ Ordering parse_ordering(const std::string& name, const std::string& field);
 
 // C A⁻¹ Cᵀ and C A⁻¹ b for a sparse C with few rows: the condensed operator of contact rows.
 struct Condensation {
-  Eigen::MatrixXd S;             // C A⁻¹ Cᵀ (m × m), symmetric positive semidefinite
-  Eigen::VectorXd c;             // C A⁻¹ b (m)
-  long long reached_columns = 0; // CHOLMOD: columns of L on the elimination-tree paths of C's rows
-  long long entries = 0;         // CHOLMOD: entries of W = L⁻¹ P Cᵀ computed (dense blocks per supernode)
-  long long peak_entries = 0;    // CHOLMOD: the most of them held at once
+  Eigen::MatrixXd S;              // C A⁻¹ Cᵀ (m × m), symmetric positive semidefinite
+  Eigen::VectorXd c;              // C A⁻¹ b (m)
+  long long reached_columns = 0;  // CHOLMOD: columns of L on the elimination-tree paths of C's rows
+  long long entries = 0;          // CHOLMOD: entries of W = L⁻¹ P Cᵀ computed (dense blocks per supernode)
+  long long peak_entries = 0;     // CHOLMOD: the most of them held at once
 };
 
 // What a solver of K reports about itself.

@@ -40,13 +40,14 @@ struct BoundaryFace {
 };
 
 struct Mesh {
-  int dim = 2;    // 2: triangles in the plane z = 0; 3: tetrahedra
-  int order = 1;  // 1: linear elements; 2: quadratic (isoparametric)
+  int dim = 2;                         // 2: triangles in the plane z = 0; 3: tetrahedra
+  int order = 1;                       // 1: linear elements; 2: quadratic (isoparametric)
   std::vector<Eigen::Vector3d> nodes;  // positions (length); z = 0 in 2D
   std::vector<int> elements;           // nodes_per_element() node indices per element, positively oriented
   std::map<std::string, std::vector<BoundaryFace>> boundaries;  // named boundary pieces
-  std::map<std::string, std::vector<int>> regions;  // named sets of elements (a Gmsh mesh's physical groups of dimension dim)
-  std::map<std::string, std::vector<int>> points;   // named nodes (a Gmsh mesh's physical points)
+  std::map<std::string, std::vector<int>>
+      regions;  // named sets of elements (a Gmsh mesh's physical groups of dimension dim)
+  std::map<std::string, std::vector<int>> points;  // named nodes (a Gmsh mesh's physical points)
 
   ElementType type() const { return element_type(dim, order); }
   int nodes_per_element() const { return contactqp::nodes_per_element(type()); }

@@ -13,14 +13,15 @@
 namespace contactqp {
 
 struct BuildOptions {
-  long long max_elements = 4'000'000;  // refuse scenes whose mesh would exceed this many elements (triangles or tetrahedra)
+  long long max_elements =
+      4'000'000;  // refuse scenes whose mesh would exceed this many elements (triangles or tetrahedra)
 };
 
 // A contact candidate: one node of the contact boundary that may touch one obstacle.
 struct Candidate {
   int node = -1;
   int obstacle = -1;
-  double gap = 0;              // initial gap (x_i − p)·n along the obstacle normal (length)
+  double gap = 0;  // initial gap (x_i − p)·n along the obstacle normal (length)
   // The boundary the node stands for, ∫ N_i over its faces: in 2D a length (∫ N_i ds over its
   // edges), in 3D an area (a third of each linear face; for a 6-node face 0 at its vertices
   // and a third of the face at each mid-side node: docs/scenes.md, "Tributary areas").
@@ -32,14 +33,14 @@ struct Model {
   // vectors rotated) and reset; `rotation` remembers it (a rotation about z in 2D).
   Scene scene;
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-  Mesh mesh;  // in the global frame
+  Mesh mesh;    // in the global frame
   int dim = 2;  // mesh.dim, the scene's dimension
   // DOF d = dim·node + component. free_index[d] is its column in K, or −1 when prescribed.
   // A node's components are along the columns of its DOF frame (dof_frame(): the global axes,
   // except at nodes with a prescribed displacement in a rotated scene, whose components stay
   // along the scene's own axes so that "[null, −δ]" keeps its meaning).
   std::vector<int> free_index;
-  Eigen::VectorXd prescribed;  // dim·n_nodes: the prescribed displacement of each prescribed DOF, 0 elsewhere
+  Eigen::VectorXd prescribed;           // dim·n_nodes: the prescribed displacement of each prescribed DOF, 0 elsewhere
   std::vector<int> frame_of_node;       // n_nodes: index into `frames`, −1 for the global axes; empty when all are
   std::vector<Eigen::MatrixXd> frames;  // dim × dim, orthogonal; column c is the direction of DOF component c
   // dim·n_nodes, global axes: consistent nodal forces of the force loads (traction, pressure,
@@ -76,8 +77,7 @@ Eigen::MatrixXd elasticity_matrix(ElasticModel model, const Material& material);
 
 // Stiffness of one triangle (2D convenience form: 2·nodes_per_element square, DOFs [u0x, u0y,
 // u1x, ...]), per `thickness`. Isoparametric: quadratic triangles may have curved sides.
-Eigen::MatrixXd element_stiffness(const Eigen::Vector2d* nodes, int order, const Eigen::Matrix3d& D,
-                                  double thickness);
+Eigen::MatrixXd element_stiffness(const Eigen::Vector2d* nodes, int order, const Eigen::Matrix3d& D, double thickness);
 
 // What an element's energy is, by body.formulation (docs/incompressible.md).
 // Displacement: ½ ∫ εᵀ D ε. Mixed (plane strain): the elasticity matrix split as
@@ -99,7 +99,8 @@ ElementLaw element_law(const Scene& scene);  // the scene's model, material and 
 // Stiffness of one element of any type (dim·nodes_per_element square, DOFs [u0x, u0y, (u0z,)
 // u1x, ...]); per `thickness` in 2D, ignored in 3D. `nodes` holds nodes_per_element positions
 // in the element's node order.
-Eigen::MatrixXd element_stiffness(ElementType type, const Eigen::Vector3d* nodes, const ElementLaw& law, double thickness);
+Eigen::MatrixXd element_stiffness(ElementType type, const Eigen::Vector3d* nodes, const ElementLaw& law,
+                                  double thickness);
 Eigen::MatrixXd element_stiffness(const Eigen::Vector2d* nodes, int order, const ElementLaw& law, double thickness);
 
 // The element mean of the dilatation tr ε = ∂u_x/∂x + ∂u_y/∂y of a triangle: (1/|T|) ∫_T tr ε

@@ -29,7 +29,7 @@ struct ObstacleContact {
   // Σ λ_i for the whole body: doubled when a symmetry plane halves the 2D model, four times
   // the 3D quarter model's (force).
   double total_force = 0;
-  double line_load = 0;      // 2D: total_force / thickness (force per length); 3D: total_force
+  double line_load = 0;  // 2D: total_force / thickness (force per length); 3D: total_force
   // Σ λ_i n_i: the obstacle's resultant force on the body (global axes; for the whole body
   // with symmetry). Its length is Hertz's P; on a curved obstacle it is below total_force.
   Eigen::Vector3d resultant = Eigen::Vector3d::Zero();
@@ -46,14 +46,14 @@ struct ObstacleContact {
   double contact_area = 0;
   Eigen::Vector3d centre_point = Eigen::Vector3d::Zero();
   double max_pressure = 0;
-  int contact_nodes = 0;            // candidates carrying force (λ_i > 1e-8 · max λ)
+  int contact_nodes = 0;  // candidates carrying force (λ_i > 1e-8 · max λ)
 };
 
 struct ContactSummary {
   std::vector<ContactProfilePoint> profile;  // every candidate, sorted by obstacle, then s
   std::vector<ObstacleContact> obstacles;    // one per obstacle of the scene, in scene order
-  double total_force = 0;  // over all obstacles (force)
-  double line_load = 0;    // total_force / thickness
+  double total_force = 0;                    // over all obstacles (force)
+  double line_load = 0;                      // total_force / thickness
   // The zone's shape on the obstacle that carries the largest force (the only one, usually).
   int main_obstacle = 0;
   double half_width = 0;
@@ -87,15 +87,15 @@ struct HertzComparison {
   // circle or sphere through the nodes in contact) or "fitted and obstacle.radius".
   double radius = 0;
   std::string radius_source;
-  double effective_modulus = 0;   // E* = E/(1 − ν²) in plane strain and solid, E in plane stress
-  double force = 0;               // P: 2D per length, 3D the whole force
-  double half_width = 0;          // 2D: b = sqrt(4 P R / (π E*)) for the computed line load P
-  double contact_radius = 0;      // 3D: a = (3 P R / (4 E*))^(1/3) for the computed force P
-  double max_pressure = 0;        // p0 = 2P / (π b) (2D), 3P / (2π a²) (3D)
-  double error_half_width = 0;    // 2D: (b_computed − b) / b
+  double effective_modulus = 0;     // E* = E/(1 − ν²) in plane strain and solid, E in plane stress
+  double force = 0;                 // P: 2D per length, 3D the whole force
+  double half_width = 0;            // 2D: b = sqrt(4 P R / (π E*)) for the computed line load P
+  double contact_radius = 0;        // 3D: a = (3 P R / (4 E*))^(1/3) for the computed force P
+  double max_pressure = 0;          // p0 = 2P / (π b) (2D), 3P / (2π a²) (3D)
+  double error_half_width = 0;      // 2D: (b_computed − b) / b
   double error_contact_radius = 0;  // 3D: (a_computed − a) / a, a_computed the moment estimate
-  double error_max_pressure = 0;  // (p_max − p0) / p0
-  double error_l2 = 0;            // ‖p_h − p_Hertz‖_L2 / ‖p_Hertz‖_L2 over the contact zone
+  double error_max_pressure = 0;    // (p_max − p0) / p0
+  double error_l2 = 0;              // ‖p_h − p_Hertz‖_L2 / ‖p_Hertz‖_L2 over the contact zone
 };
 
 // Hertz's solution for the contact on one obstacle, when its two surfaces are curved
@@ -113,8 +113,8 @@ std::optional<HertzComparison> compare_with_hertz(const Model& model, const Cont
 // the contact forces and the force loads it balances: Σ r + Σ λ n + Σ f = 0 (doubled
 // consistently when a symmetry plane halves the model, whose own reaction is left out).
 struct Reaction {
-  std::string load;      // the load's field path, e.g. "load[0]"
-  std::string boundary;  // its boundary
+  std::string load;                                 // the load's field path, e.g. "load[0]"
+  std::string boundary;                             // its boundary
   Eigen::Vector3d force = Eigen::Vector3d::Zero();  // z = 0 in 2D
 };
 std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,

@@ -51,11 +51,11 @@ void validate(const QuadraticProgram& qp);
 double primal_objective(const QuadraticProgram& qp, const VectorXd& u);
 
 enum class Backend {
-  Uzawa,  // dual projected gradient with a fixed step ρ (the reference paper's method)
+  Uzawa,             // dual projected gradient with a fixed step ρ (the reference paper's method)
   UzawaAccelerated,  // Uzawa with Nesterov/FISTA extrapolation on the dual and adaptive restart
-  Ipopt,  // primal interior point (Ipopt with MUMPS) on the QP itself
-  Nlopt,  // the dual max θ(λ), λ ≥ 0, by a bound-constrained NLopt method (L-BFGS by default)
-  ActiveSet,  // primal-dual active set (semismooth Newton) on the contact-condensed problem
+  Ipopt,             // primal interior point (Ipopt with MUMPS) on the QP itself
+  Nlopt,             // the dual max θ(λ), λ ≥ 0, by a bound-constrained NLopt method (L-BFGS by default)
+  ActiveSet,         // primal-dual active set (semismooth Newton) on the contact-condensed problem
 };
 
 enum class Status {
@@ -102,10 +102,10 @@ struct ActiveSetOptions {
 
 struct SolveOptions {
   Backend backend = Backend::Uzawa;
-  double tol = 1e-8;         // relative, dimensionless: each backend's stopping rule uses the scales of certificate.hpp
+  double tol = 1e-8;  // relative, dimensionless: each backend's stopping rule uses the scales of certificate.hpp
   int max_iterations = 10000;
-  bool verbose = false;      // third-party banners and per-iteration logs stay silent unless set
-  bool scale = true;         // solve an internally scaled copy, so E and length units do not matter
+  bool verbose = false;  // third-party banners and per-iteration logs stay silent unless set
+  bool scale = true;     // solve an internally scaled copy, so E and length units do not matter
   UzawaOptions uzawa;
   NloptOptions nlopt;
   ActiveSetOptions active_set;
@@ -132,8 +132,8 @@ struct SolveResult {
   std::string message = "solve() was not called";  // why it stopped, one sentence
   VectorXd u, lambda;                              // λ ≥ 0, compression positive; always finite
   int iterations = 0;
-  Timings timings;                                 // seconds per phase ("factorize", "solve", ...)
-  std::map<std::string, double> diagnostics;       // named extras: "rho", "rho_max", ...
+  Timings timings;                            // seconds per phase ("factorize", "solve", ...)
+  std::map<std::string, double> diagnostics;  // named extras: "rho", "rho_max", ...
   // Not failures, but worth telling the user: e.g. a PETSc option nothing read.
   std::vector<std::string> warnings;
   // The solver of K the backend used, if any: reuse it for certify() or further solves.

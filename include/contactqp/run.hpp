@@ -58,8 +58,8 @@ struct CompareOptions {
 // One backend's run within a comparison.
 struct BackendRun {
   Backend backend = Backend::Uzawa;
-  SolveResult result;        // its K_factor released: a factor per backend is memory the next one may need
-  Certificate certificate;   // computed with the comparison's own factor of K, the same for every run
+  SolveResult result;       // its K_factor released: a factor per backend is memory the next one may need
+  Certificate certificate;  // computed with the comparison's own factor of K, the same for every run
   ContactSummary contact;
   std::optional<double> rel_diff_u, rel_diff_lambda;  // ‖x − x_ref‖/‖x_ref‖ against the reference run
 };
@@ -67,13 +67,13 @@ struct BackendRun {
 struct CompareReport {
   std::shared_ptr<const Model> model;
   std::shared_ptr<const QuadraticProgram> qp;
-  double tol = 0;                     // every backend's tolerance T (the scene's solver.tol)
-  std::vector<BackendRun> runs;       // in CompareOptions::backends order
-  int reference = -1;                 // the converged run with the smallest certified |gap|; −1 when none has θ
-  Agreement bound;                    // agreement_for(tol)
+  double tol = 0;                // every backend's tolerance T (the scene's solver.tol)
+  std::vector<BackendRun> runs;  // in CompareOptions::backends order
+  int reference = -1;            // the converged run with the smallest certified |gap|; −1 when none has θ
+  Agreement bound;               // agreement_for(tol)
   double max_diff_u = 0, max_diff_lambda = 0, max_gap = 0;  // pairwise maxima, symmetric relative 2-norms
-  bool all_converged = false;         // every run converged and has a dual objective
-  bool agree = false;                 // all_converged and every maximum within its bound
+  bool all_converged = false;                               // every run converged and has a dual objective
+  bool agree = false;                                       // all_converged and every maximum within its bound
   // One factorisation of K and the fastest of five solves with it: the unit of cost
   // (docs/architecture.md, "Where the time goes"); linear_solve_seconds is NaN when K cannot
   // be factorised.

@@ -33,7 +33,7 @@ namespace contactqp {
 // The elastic model, and with it the dimension: plane strain and plane stress are 2D (forces
 // per the body's thickness), solid is 3D linear elasticity.
 enum class ElasticModel { PlaneStrain, PlaneStress, Solid };
-using PlaneModel = ElasticModel;  // its name when only the 2D models existed
+using PlaneModel = ElasticModel;    // its name when only the 2D models existed
 int dimension(ElasticModel model);  // 2 or 3
 
 // How the strain energy is discretised (body.formulation). Displacement: the standard
@@ -51,8 +51,9 @@ struct MeshSpec {
   double size = 0;          // element size far from the contact zone (length), > 0
   double contact_size = 0;  // element size along the candidate contact zone (length), in (0, size]
   double grading = 0.1;     // growth of the element size per unit distance from the contact zone, in (0, 1]
-  int order = 1;            // 1: linear (3-node triangles, 4-node tetrahedra), 2: quadratic (6-, 10-node); 0 for a mesh file: its elements decide
-  double size_factor = 1;   // .geo files only: multiplies Gmsh's Mesh.MeshSizeFactor (all sizes), > 0
+  int order =
+      1;  // 1: linear (3-node triangles, 4-node tetrahedra), 2: quadratic (6-, 10-node); 0 for a mesh file: its elements decide
+  double size_factor = 1;  // .geo files only: multiplies Gmsh's Mesh.MeshSizeFactor (all sizes), > 0
 };
 
 struct BodySpec {
@@ -71,7 +72,7 @@ struct BodySpec {
   bool symmetry = false;
   double thickness = 1.0;  // 2D: out-of-plane thickness (length); forces and K are per this thickness
   Formulation formulation = Formulation::Displacement;  // "displacement" or "mixed"
-  MeshSpec mesh;           // generated shapes; for a .geo file only order and size_factor
+  MeshSpec mesh;                                        // generated shapes; for a .geo file only order and size_factor
 };
 
 struct LoadSpec {
@@ -86,9 +87,9 @@ struct LoadSpec {
   // traction: force per area; gravity: the acceleration g; point: the force (for the thickness).
   // dim components, z = 0 in 2D.
   Eigen::Vector3d vector = Eigen::Vector3d::Zero();
-  double pressure = 0;  // pressure: force per area, positive pushes into the body
-  double density = 0;   // gravity: mass per volume, > 0
-  std::string region;   // gravity: a named region of a mesh body; "" for the whole body
+  double pressure = 0;                // pressure: force per area, positive pushes into the body
+  double density = 0;                 // gravity: mass per volume, > 0
+  std::string region;                 // gravity: a named region of a mesh body; "" for the whole body
   std::optional<Eigen::Vector3d> at;  // point: the location (the nearest node takes the force)
   std::string point;                  // point: a named physical point of a mesh body instead of `at`
 
@@ -97,33 +98,33 @@ struct LoadSpec {
 
 // The rigid obstacles, one type per kind. Points and directions have z = 0 in 2D. Every
 // normal or axis is a unit vector (normalised on read).
-struct PlaneObstacle {     // 2D, 3D: the half-space {x : (x − point)·normal ≥ 0} is free
+struct PlaneObstacle {  // 2D, 3D: the half-space {x : (x − point)·normal ≥ 0} is free
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal = Eigen::Vector3d::UnitY();  // towards the body
 };
-struct CircleObstacle {    // 2D: a rigid cylinder seen in section; the body stays outside it
+struct CircleObstacle {  // 2D: a rigid cylinder seen in section; the body stays outside it
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
-  double radius = 0;       // (length), > 0
+  double radius = 0;  // (length), > 0
 };
-struct ProfileObstacle {   // 2D: a polyline through `points` (its end segments extended)
+struct ProfileObstacle {                // 2D: a polyline through `points` (its end segments extended)
   std::vector<Eigen::Vector3d> points;  // ≥ 2, distinct consecutive points
-  bool body_on_left = true;  // the body lies left of the path from the first point to the last
+  bool body_on_left = true;             // the body lies left of the path from the first point to the last
 };
-struct SphereObstacle {    // 3D: a rigid ball; the body stays outside it
+struct SphereObstacle {  // 3D: a rigid ball; the body stays outside it
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
-  double radius = 0;       // (length), > 0
+  double radius = 0;  // (length), > 0
 };
-struct CylinderObstacle {  // 3D: a rigid infinite cylinder; the body stays outside it
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();   // a point of its axis
-  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();   // unit
-  double radius = 0;       // (length), > 0
+struct CylinderObstacle {                           // 3D: a rigid infinite cylinder; the body stays outside it
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // a point of its axis
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  // unit
+  double radius = 0;                                // (length), > 0
 };
 // 3D: a rigid flat-ended circular punch (Boussinesq's problem): the disc of `radius` centred at
 // `center`, normal `axis` towards the body, with the punch's body behind it (its rim a sharp edge).
 struct PunchObstacle {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // unit, towards the body
-  double radius = 0;       // a (length), > 0
+  double radius = 0;                                // a (length), > 0
 };
 
 struct ObstacleSpec {
@@ -132,9 +133,13 @@ struct ObstacleSpec {
 
   std::string type() const;  // "plane", "circle", "profile", "sphere", "cylinder", "punch"
   template <class Kind>
-  const Kind* as() const { return std::get_if<Kind>(&shape); }
+  const Kind* as() const {
+    return std::get_if<Kind>(&shape);
+  }
   template <class Kind>
-  bool is() const { return std::holds_alternative<Kind>(shape); }
+  bool is() const {
+    return std::holds_alternative<Kind>(shape);
+  }
 };
 
 struct ContactSpec {
@@ -148,7 +153,7 @@ struct ContactSpec {
 struct TransformSpec {
   double rotate_degrees = 0;
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // unit
-  Eigen::Matrix3d rotation() const;  // exact for multiples of 90° about a coordinate axis
+  Eigen::Matrix3d rotation() const;                 // exact for multiples of 90° about a coordinate axis
   bool is_identity() const { return rotate_degrees == 0; }
 };
 
@@ -172,7 +177,7 @@ struct Scene {
 Scene parse_scene(const std::string& json_text, const std::string& source = "scene");
 Scene load_scene(const std::string& path);  // InputError("path", ...) when unreadable
 
-std::string to_string(ElasticModel model);  // "plane_strain", "plane_stress", "solid"
+std::string to_string(ElasticModel model);       // "plane_strain", "plane_stress", "solid"
 std::string to_string(Formulation formulation);  // "displacement", "mixed"
 
 // "auto", a number (absolute ρ) or a fraction of ρ_max written "0.5x".

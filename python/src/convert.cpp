@@ -34,8 +34,7 @@ py::array_t<double> float_array(py::handle value, const std::string& field) {
 VectorXd to_vector(py::handle value, const std::string& field) {
   if (value.is_none()) throw InputError(field, "is None: must be a 1-D array of numbers");
   const py::array_t<double> array = float_array(value, field);
-  if (array.ndim() != 1)
-    throw InputError(field, "has shape " + shape_text(array) + ": must be a 1-D array");
+  if (array.ndim() != 1) throw InputError(field, "has shape " + shape_text(array) + ": must be a 1-D array");
   VectorXd vector(array.shape(0));
   const auto view = array.unchecked<1>();
   for (py::ssize_t i = 0; i < array.shape(0); ++i) vector[i] = view(i);
@@ -100,7 +99,8 @@ UzawaOptions to_rho(py::handle value, const std::string& field) {
   if (value.is_none()) return {};
   if (py::isinstance<py::str>(value)) return parse_rho(value.cast<std::string>(), field);
   if (py::isinstance<py::bool_>(value) || !(py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)))
-    throw InputError(field, "is a " + type_name(value) + ": must be \"auto\", a number, or a fraction of rho_max such as \"0.5x\"");
+    throw InputError(
+        field, "is a " + type_name(value) + ": must be \"auto\", a number, or a fraction of rho_max such as \"0.5x\"");
   UzawaOptions rho;
   rho.rho_rule = UzawaOptions::RhoRule::Absolute;
   rho.rho = value.cast<double>();
@@ -115,11 +115,14 @@ std::map<std::string, std::string> to_backend_options(py::handle value, const st
     throw InputError(field, "is a " + type_name(value) + ": must be a dict {\"key\": value}");
   for (const auto& [key, entry] : value.cast<py::dict>()) {
     const std::string name = py::str(key);
-    if (py::isinstance<py::str>(entry)) options[name] = entry.cast<std::string>();
-    else if (!py::isinstance<py::bool_>(entry) && (py::isinstance<py::int_>(entry) || py::isinstance<py::float_>(entry)))
+    if (py::isinstance<py::str>(entry))
+      options[name] = entry.cast<std::string>();
+    else if (!py::isinstance<py::bool_>(entry) &&
+             (py::isinstance<py::int_>(entry) || py::isinstance<py::float_>(entry)))
       options[name] = py::str(py::repr(entry));
     else
-      throw InputError(field + "." + name, "= " + std::string(py::str(py::repr(entry))) + ": must be a string or a number");
+      throw InputError(field + "." + name,
+                       "= " + std::string(py::str(py::repr(entry))) + ": must be a string or a number");
   }
   return options;
 }
@@ -127,7 +130,8 @@ std::map<std::string, std::string> to_backend_options(py::handle value, const st
 void apply(const SolverArguments& arguments, SolveOptions& options) {
   if (!arguments.backend.is_none()) options.backend = to_backend(arguments.backend, "backend");
   if (!arguments.tol.is_none()) {
-    if (py::isinstance<py::bool_>(arguments.tol) || !(py::isinstance<py::float_>(arguments.tol) || py::isinstance<py::int_>(arguments.tol)))
+    if (py::isinstance<py::bool_>(arguments.tol) ||
+        !(py::isinstance<py::float_>(arguments.tol) || py::isinstance<py::int_>(arguments.tol)))
       throw InputError("tol", "is a " + type_name(arguments.tol) + ": must be a number in (0, 1)");
     options.tol = arguments.tol.cast<double>();
     require(options.tol > 0 && options.tol < 1, "tol", options.tol, "must lie in (0, 1)");
@@ -135,7 +139,8 @@ void apply(const SolverArguments& arguments, SolveOptions& options) {
   if (!arguments.rho.is_none()) options.uzawa = to_rho(arguments.rho, "rho");
   if (!arguments.max_iterations.is_none()) {
     if (py::isinstance<py::bool_>(arguments.max_iterations) || !py::isinstance<py::int_>(arguments.max_iterations))
-      throw InputError("max_iterations", "is a " + type_name(arguments.max_iterations) + ": must be a positive integer");
+      throw InputError("max_iterations",
+                       "is a " + type_name(arguments.max_iterations) + ": must be a positive integer");
     const long long n = to_positive_integer(arguments.max_iterations, "max_iterations");
     require(n <= 2147483647LL, "max_iterations", n, "must be a positive integer below 2^31");
     options.max_iterations = static_cast<int>(n);

@@ -54,8 +54,8 @@ py::dict to_dict(const Timings& timings);
 class Observer {
  public:
   Observer(py::object callable, const std::string& field);  // None: no observer
-  void install(SolveOptions& options);  // sets options.observer when there is a callable
-  void rethrow_if_failed();              // with the GIL held
+  void install(SolveOptions& options);                      // sets options.observer when there is a callable
+  void rethrow_if_failed();                                 // with the GIL held
 
  private:
   py::object callable_;

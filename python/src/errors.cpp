@@ -1,7 +1,7 @@
 // contactqp.InputError: the library's InputError as a Python exception, a subclass of
 // ValueError, with the offending field as its `field` attribute.
-#include "bindings.hpp"
 #include "contactqp/errors.hpp"
+#include "bindings.hpp"
 
 namespace contactqp::python {
 

@@ -30,11 +30,13 @@ void check_finite_matrix(const SparseMatrix& matrix, const std::string& field) {
 void check_finite_vector(const VectorXd& vector, const std::string& field) {
   for (Eigen::Index i = 0; i < vector.size(); ++i)
     if (!std::isfinite(vector[i]))
-      throw InputError(field, "[" + std::to_string(i) + "] = " + detail::format_value(vector[i]) +
-                                  ": every entry must be finite");
+      throw InputError(
+          field, "[" + std::to_string(i) + "] = " + detail::format_value(vector[i]) + ": every entry must be finite");
 }
 
-std::string shape(const SparseMatrix& m) { return "(" + std::to_string(m.rows()) + ", " + std::to_string(m.cols()) + ")"; }
+std::string shape(const SparseMatrix& m) {
+  return "(" + std::to_string(m.rows()) + ", " + std::to_string(m.cols()) + ")";
+}
 
 QuadraticProgram make_qp(py::handle K_in, py::handle f_in, py::handle B_in, py::handle g_in) {
   QuadraticProgram qp;
@@ -45,8 +47,9 @@ QuadraticProgram make_qp(py::handle K_in, py::handle f_in, py::handle B_in, py::
   if (qp.f.size() != n)
     throw InputError("f", "has " + std::to_string(qp.f.size()) + " entries, K has " + std::to_string(n) + " rows");
   if (B_in.is_none() != g_in.is_none())
-    throw InputError(B_in.is_none() ? "B" : "g", "= None: must be given with " + std::string(B_in.is_none() ? "g" : "B") +
-                                                     " (both None: no constraints)");
+    throw InputError(
+        B_in.is_none() ? "B" : "g",
+        "= None: must be given with " + std::string(B_in.is_none() ? "g" : "B") + " (both None: no constraints)");
   if (B_in.is_none()) {
     qp.B = SparseMatrix(0, n);
     qp.g = VectorXd(0);
@@ -57,7 +60,8 @@ QuadraticProgram make_qp(py::handle K_in, py::handle f_in, py::handle B_in, py::
   if (qp.B.cols() != n)
     throw InputError("B", "has " + std::to_string(qp.B.cols()) + " columns, K has " + std::to_string(n) + " rows");
   if (qp.g.size() != qp.B.rows())
-    throw InputError("g", "has " + std::to_string(qp.g.size()) + " entries, B has " + std::to_string(qp.B.rows()) + " rows");
+    throw InputError("g",
+                     "has " + std::to_string(qp.g.size()) + " entries, B has " + std::to_string(qp.B.rows()) + " rows");
   check_finite_matrix(qp.K, "K");
   check_finite_vector(qp.f, "f");
   check_finite_matrix(qp.B, "B");
@@ -81,7 +85,8 @@ struct Solution {
 
 void check_iterate(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda) {
   if (u.size() != qp.n_dofs())
-    throw InputError("u", "has " + std::to_string(u.size()) + " entries, K has " + std::to_string(qp.n_dofs()) + " rows");
+    throw InputError("u",
+                     "has " + std::to_string(u.size()) + " entries, K has " + std::to_string(qp.n_dofs()) + " rows");
   if (lambda.size() != qp.n_constraints())
     throw InputError("lam", "has " + std::to_string(lambda.size()) + " entries, B has " +
                                 std::to_string(qp.n_constraints()) + " rows");
@@ -141,15 +146,16 @@ void bind_qp(py::module_& m) {
       .value("IPOPT", Backend::Ipopt, "primal interior point (Ipopt with MUMPS) on the QP itself")
       .value("NLOPT", Backend::Nlopt, "the dual by a bound-constrained NLopt method (L-BFGS by default)")
       .value("ACTIVE_SET", Backend::ActiveSet, "primal-dual active set on the contact-condensed problem")
-      .def_property_readonly("label", [](Backend b) { return to_string(b); },
-                             "The name the command line and scene files use, e.g. 'active_set'.");
+      .def_property_readonly(
+          "label", [](Backend b) { return to_string(b); },
+          "The name the command line and scene files use, e.g. 'active_set'.");
   py::enum_<Status>(m, "Status", "How a solve ended; accuracy is the certificate's business.")
       .value("CONVERGED", Status::Converged, "the backend's stopping rule was met at the requested tol")
       .value("MAX_ITERATIONS", Status::MaxIterations, "stopped at max_iterations; u and lam are the last iterate")
       .value("DIVERGED", Status::Diverged, "the iteration was expanding (e.g. Uzawa with rho > rho_max)")
       .value("NUMERICAL_ERROR", Status::NumericalError, "a factorisation or the backend's library failed")
-      .def_property_readonly("label", [](Status s) { return to_string(s); },
-                             "The name the result JSON uses, e.g. 'converged'.");
+      .def_property_readonly(
+          "label", [](Status s) { return to_string(s); }, "The name the result JSON uses, e.g. 'converged'.");
 
   m.def("available_backends", &available_backends, "The backends built into this copy, in enum order.");
   m.def(
@@ -169,10 +175,14 @@ In qpsolvers' names: P = K, q = -f, G = B, h = g. The data are copied; the objec
            py::arg("K"), py::arg("f"), py::arg("B") = py::none(), py::arg("g") = py::none(),
            "QuadraticProgram(K, f, B=None, g=None); InputError names the argument on a wrong shape, a "
            "non-finite entry or a K that is not symmetric.")
-      .def_property_readonly("K", [](const QuadraticProgram& qp) { return to_scipy(qp.K); }, "K as scipy.sparse.csc_matrix (a copy)")
-      .def_property_readonly("f", [](const QuadraticProgram& qp) { return qp.f; }, "f (a copy)")
-      .def_property_readonly("B", [](const QuadraticProgram& qp) { return to_scipy(qp.B); }, "B as scipy.sparse.csc_matrix (a copy)")
-      .def_property_readonly("g", [](const QuadraticProgram& qp) { return qp.g; }, "g (a copy)")
+      .def_property_readonly(
+          "K", [](const QuadraticProgram& qp) { return to_scipy(qp.K); }, "K as scipy.sparse.csc_matrix (a copy)")
+      .def_property_readonly(
+          "f", [](const QuadraticProgram& qp) { return qp.f; }, "f (a copy)")
+      .def_property_readonly(
+          "B", [](const QuadraticProgram& qp) { return to_scipy(qp.B); }, "B as scipy.sparse.csc_matrix (a copy)")
+      .def_property_readonly(
+          "g", [](const QuadraticProgram& qp) { return qp.g; }, "g (a copy)")
       .def_property_readonly("n_dofs", &QuadraticProgram::n_dofs, "n, the number of unknowns")
       .def_property_readonly("n_constraints", &QuadraticProgram::n_constraints, "m, the number of rows of B")
       .def(
@@ -200,9 +210,18 @@ The scales are documented in include/contactqp/certificate.hpp.)")
       .def_readonly("complementarity", &Certificate::complementarity, "max |lam_i (Bu - g)_i|, relative")
       .def_readonly("objective", &Certificate::objective, "J(u), in the QP's energy units")
       .def_readonly("dual_available", &Certificate::dual_available, "False when K could not be factorised")
-      .def_property_readonly("dual_objective", [](const Certificate& c) { return c.dual_available ? py::object(py::float_(c.dual_objective)) : py::none(); }, "theta(lam), or None")
-      .def_property_readonly("duality_gap", [](const Certificate& c) { return c.dual_available ? py::object(py::float_(c.duality_gap)) : py::none(); }, "J(u) - theta(lam), or None")
-      .def_property_readonly("relative_gap", [](const Certificate& c) { return c.dual_available ? py::object(py::float_(c.relative_gap)) : py::none(); }, "duality_gap / energy scale, or None")
+      .def_property_readonly(
+          "dual_objective",
+          [](const Certificate& c) { return c.dual_available ? py::object(py::float_(c.dual_objective)) : py::none(); },
+          "theta(lam), or None")
+      .def_property_readonly(
+          "duality_gap",
+          [](const Certificate& c) { return c.dual_available ? py::object(py::float_(c.duality_gap)) : py::none(); },
+          "J(u) - theta(lam), or None")
+      .def_property_readonly(
+          "relative_gap",
+          [](const Certificate& c) { return c.dual_available ? py::object(py::float_(c.relative_gap)) : py::none(); },
+          "duality_gap / energy scale, or None")
       .def_property_readonly("kkt_max", &Certificate::kkt_max, "the largest of the four relative KKT residuals")
       .def("as_dict", &certificate_dict, "Every number above in a dict.")
       .def("__repr__", [](const Certificate& c) {
@@ -213,16 +232,24 @@ The scales are documented in include/contactqp/certificate.hpp.)")
   py::class_<Solution>(m, "Solution", R"(The outcome of contactqp.solve(): u (also x), lam (also z),
 status, message, iterations, timings (seconds per phase), diagnostics (e.g. rho, rho_max),
 certificate, backend, and converged (status == Status.CONVERGED).)")
-      .def_property_readonly("u", [](const Solution& s) { return s.result.u; }, "the displacements (primal solution)")
-      .def_property_readonly("x", [](const Solution& s) { return s.result.u; }, "u, under qpsolvers' name")
-      .def_property_readonly("lam", [](const Solution& s) { return s.result.lambda; }, "the multipliers of B u <= g, >= 0 (contact forces)")
-      .def_property_readonly("z", [](const Solution& s) { return s.result.lambda; }, "lam, under qpsolvers' name")
+      .def_property_readonly(
+          "u", [](const Solution& s) { return s.result.u; }, "the displacements (primal solution)")
+      .def_property_readonly(
+          "x", [](const Solution& s) { return s.result.u; }, "u, under qpsolvers' name")
+      .def_property_readonly(
+          "lam", [](const Solution& s) { return s.result.lambda; },
+          "the multipliers of B u <= g, >= 0 (contact forces)")
+      .def_property_readonly(
+          "z", [](const Solution& s) { return s.result.lambda; }, "lam, under qpsolvers' name")
       .def_property_readonly("status", [](const Solution& s) { return s.result.status; })
       .def_property_readonly("converged", [](const Solution& s) { return s.result.status == Status::Converged; })
-      .def_property_readonly("message", [](const Solution& s) { return s.result.message; }, "why it stopped, one sentence")
+      .def_property_readonly(
+          "message", [](const Solution& s) { return s.result.message; }, "why it stopped, one sentence")
       .def_property_readonly("iterations", [](const Solution& s) { return s.result.iterations; })
-      .def_property_readonly("timings", [](const Solution& s) { return to_dict(s.result.timings); }, "seconds per phase")
-      .def_property_readonly("diagnostics", [](const Solution& s) { return s.result.diagnostics; }, "named extras: rho, rho_max, ...")
+      .def_property_readonly(
+          "timings", [](const Solution& s) { return to_dict(s.result.timings); }, "seconds per phase")
+      .def_property_readonly(
+          "diagnostics", [](const Solution& s) { return s.result.diagnostics; }, "named extras: rho, rho_max, ...")
       .def_property_readonly("backend", [](const Solution& s) { return s.backend; })
       .def_readonly("certificate", &Solution::certificate)
       .def("__repr__", [](const Solution& s) {

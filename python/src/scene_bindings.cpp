@@ -28,9 +28,7 @@ Eigen::MatrixXd profile_array(const std::vector<ContactProfilePoint>& profile) {
   return out;
 }
 
-py::object hertz_object(const std::optional<HertzComparison>& hertz) {
-  return hertz ? py::cast(*hertz) : py::none();
-}
+py::object hertz_object(const std::optional<HertzComparison>& hertz) { return hertz ? py::cast(*hertz) : py::none(); }
 
 py::list obstacles_list(const ContactView& view) {
   py::list list;
@@ -111,11 +109,13 @@ std::vector<Backend> backend_list(py::handle backends) {
       if (seen == backend) throw InputError("backends", "lists \"" + to_string(backend) + "\" twice");
     list.push_back(backend);
   }
-  if (list.empty()) throw InputError("backends", "is empty: name at least one backend, or None for every available one");
+  if (list.empty())
+    throw InputError("backends", "is empty: name at least one backend, or None for every available one");
   return list;
 }
 
-const char* const kSolveSceneDoc = R"(Run a scene file as `contactqp solve` does: mesh, QP, solve, certificate, post-processing.
+const char* const kSolveSceneDoc =
+    R"(Run a scene file as `contactqp solve` does: mesh, QP, solve, certificate, post-processing.
 
 Arguments other than path override the scene's "solver" section when not None: backend,
 tol, rho, max_iterations, verbose, backend_options, scale (see help(contactqp.solve)), and
@@ -132,7 +132,8 @@ Example:
   >>> r.contact.total_force, r.hertz.half_width, r.hertz.error_max_pressure
 )";
 
-const char* const kCompareSceneDoc = R"(Solve a scene with several backends and cross-check them, as `contactqp compare` does.
+const char* const kCompareSceneDoc =
+    R"(Solve a scene with several backends and cross-check them, as `contactqp compare` does.
 
   backends   a list of contactqp.Backend values or names [every available backend]
   tol, rho, max_iterations, backend_options, scale, max_elements: as for solve_scene()
@@ -149,7 +150,8 @@ Example:
 }  // namespace
 
 void bind_scene(py::module_& m) {
-  py::class_<HertzComparison>(m, "HertzComparison", "Hertz's solution for the computed force, and the errors against it.")
+  py::class_<HertzComparison>(m, "HertzComparison",
+                              "Hertz's solution for the computed force, and the errors against it.")
       .def_readonly("dim", &HertzComparison::dim, "2: two cylinders (b, per length); 3: two spheres (a)")
       .def_readonly("radius", &HertzComparison::radius, "radius of relative curvature R")
       .def_readonly("force", &HertzComparison::force, "P: per length in 2D, the whole force in 3D")
@@ -167,30 +169,43 @@ void bind_scene(py::module_& m) {
                " p0=" + detail::format_value(h.max_pressure) + ">";
       });
 
-  py::class_<PunchComparison>(m, "PunchComparison", "Boussinesq's flat punch: P = 2 a E* delta, and the errors against it (3D).")
+  py::class_<PunchComparison>(m, "PunchComparison",
+                              "Boussinesq's flat punch: P = 2 a E* delta, and the errors against it (3D).")
       .def_readonly("radius", &PunchComparison::radius, "the punch radius a")
       .def_readonly("approach", &PunchComparison::approach, "delta, the prescribed approach")
       .def_readonly("effective_modulus", &PunchComparison::effective_modulus, "E* = E/(1 - nu^2)")
       .def_readonly("force", &PunchComparison::force, "Boussinesq's P = 2 a E* delta")
       .def_readonly("error_force", &PunchComparison::error_force, "(P_computed - P) / P")
-      .def_readonly("shape_error", &PunchComparison::shape_error, "max |p(r) 2 pi a sqrt(a^2 - r^2) / P - 1| for r <= 0.8 a");
+      .def_readonly("shape_error", &PunchComparison::shape_error,
+                    "max |p(r) 2 pi a sqrt(a^2 - r^2) / P - 1| for r <= 0.8 a");
 
   py::class_<ContactView>(m, "ContactResult", "The contact of a solved scene: force, half-width, pressure, profile.")
-      .def_property_readonly("total_force", [](const ContactView& v) { return v.summary.total_force; }, "sum of nodal contact forces (doubled with symmetry)")
-      .def_property_readonly("line_load", [](const ContactView& v) { return v.summary.line_load; }, "total_force / thickness")
-      .def_property_readonly("half_width", [](const ContactView& v) { return v.summary.half_width; }, "2 sqrt(sum lam (s - s_mean)^2 / sum lam)")
-      .def_property_readonly("half_width_last_node", [](const ContactView& v) { return v.summary.half_width_last_node; })
-      .def_property_readonly("contact_radius", [](const ContactView& v) { return v.summary.contact_radius; },
-                             "3D: sqrt(5/2 sum lam r^2 / sum lam), exact for a Hertz pressure")
-      .def_property_readonly("contact_radius_last_node", [](const ContactView& v) { return v.summary.contact_radius_last_node; })
-      .def_property_readonly("contact_area", [](const ContactView& v) { return v.summary.contact_area; }, "3D: the loaded area")
+      .def_property_readonly(
+          "total_force", [](const ContactView& v) { return v.summary.total_force; },
+          "sum of nodal contact forces (doubled with symmetry)")
+      .def_property_readonly(
+          "line_load", [](const ContactView& v) { return v.summary.line_load; }, "total_force / thickness")
+      .def_property_readonly(
+          "half_width", [](const ContactView& v) { return v.summary.half_width; },
+          "2 sqrt(sum lam (s - s_mean)^2 / sum lam)")
+      .def_property_readonly("half_width_last_node",
+                             [](const ContactView& v) { return v.summary.half_width_last_node; })
+      .def_property_readonly(
+          "contact_radius", [](const ContactView& v) { return v.summary.contact_radius; },
+          "3D: sqrt(5/2 sum lam r^2 / sum lam), exact for a Hertz pressure")
+      .def_property_readonly("contact_radius_last_node",
+                             [](const ContactView& v) { return v.summary.contact_radius_last_node; })
+      .def_property_readonly(
+          "contact_area", [](const ContactView& v) { return v.summary.contact_area; }, "3D: the loaded area")
       .def_property_readonly("max_pressure", [](const ContactView& v) { return v.summary.max_pressure; })
       .def_property_readonly("contact_nodes", [](const ContactView& v) { return v.summary.contact_nodes; })
       .def_property_readonly("candidate_max_gap", [](const ContactView& v) { return v.model->max_gap; })
       .def_property_readonly("candidate_rule", [](const ContactView& v) { return v.model->max_gap_rule; })
-      .def_property_readonly("penetrating_non_candidates", [](const ContactView& v) { return v.summary.penetrating_non_candidates; })
-      .def_property_readonly("profile", [](const ContactView& v) { return profile_array(v.summary.profile); },
-                             "N x 2 array of (s, pressure) per candidate, sorted by obstacle then s")
+      .def_property_readonly("penetrating_non_candidates",
+                             [](const ContactView& v) { return v.summary.penetrating_non_candidates; })
+      .def_property_readonly(
+          "profile", [](const ContactView& v) { return profile_array(v.summary.profile); },
+          "N x 2 array of (s, pressure) per candidate, sorted by obstacle then s")
       .def_property_readonly("obstacles", &obstacles_list, "one dict per obstacle, as the JSON's contact.obstacles")
       .def("__repr__", [](const ContactView& v) {
         return "<contactqp.ContactResult force=" + detail::format_value(v.summary.total_force) +
@@ -198,7 +213,8 @@ void bind_scene(py::module_& m) {
       });
 
   using Report = std::shared_ptr<RunReport>;
-  py::class_<RunReport, Report>(m, "SceneResult", R"(The report of contactqp.solve_scene(): the CLI's JSON as attributes.
+  py::class_<RunReport, Report>(m, "SceneResult",
+                                R"(The report of contactqp.solve_scene(): the CLI's JSON as attributes.
 
 status, message, backend (None with no_contact), iterations, u (free DOFs), lam, displacement
 (every node's, dim per node), certificate, objective, timings, diagnostics, contact, hertz
@@ -207,22 +223,31 @@ element_order, warnings; json(), csv(), vtu() give the output files' text.)")
       .def_property_readonly("status", [](const RunReport& r) { return r.result.status; })
       .def_property_readonly("converged", [](const RunReport& r) { return r.result.status == Status::Converged; })
       .def_property_readonly("message", [](const RunReport& r) { return r.result.message; })
-      .def_property_readonly("backend", [](const RunReport& r) { return r.no_contact ? py::none() : py::cast(r.options.backend); })
+      .def_property_readonly("backend",
+                             [](const RunReport& r) { return r.no_contact ? py::none() : py::cast(r.options.backend); })
       .def_readonly("no_contact", &RunReport::no_contact)
       .def_property_readonly("iterations", [](const RunReport& r) { return r.result.iterations; })
       .def_property_readonly("tol", [](const RunReport& r) { return r.options.tol; })
-      .def_property_readonly("u", [](const RunReport& r) { return r.result.u; }, "the QP's solution (free DOFs)")
-      .def_property_readonly("lam", [](const RunReport& r) { return r.result.lambda; }, "nodal contact forces, one per candidate")
-      .def_property_readonly("displacement", [](const RunReport& r) { return full_displacement(*r.model, r.result.u); },
-                             "every node's displacement, [u0x, u0y, u1x, ...] in the global frame")
+      .def_property_readonly(
+          "u", [](const RunReport& r) { return r.result.u; }, "the QP's solution (free DOFs)")
+      .def_property_readonly(
+          "lam", [](const RunReport& r) { return r.result.lambda; }, "nodal contact forces, one per candidate")
+      .def_property_readonly(
+          "displacement", [](const RunReport& r) { return full_displacement(*r.model, r.result.u); },
+          "every node's displacement, [u0x, u0y, u1x, ...] in the global frame")
       .def_readonly("certificate", &RunReport::certificate)
       .def_property_readonly("objective", [](const RunReport& r) { return r.certificate.objective; })
-      .def_property_readonly("timings", [](const RunReport& r) { return to_dict(r.timings); }, "seconds per phase, 'total' last")
+      .def_property_readonly(
+          "timings", [](const RunReport& r) { return to_dict(r.timings); }, "seconds per phase, 'total' last")
       .def_property_readonly("diagnostics", [](const RunReport& r) { return r.result.diagnostics; })
-      .def_property_readonly("contact", [](const RunReport& r) { return ContactView{r.model, r.contact}; })
+      .def_property_readonly("contact",
+                             [](const RunReport& r) {
+                               return ContactView{r.model, r.contact};
+                             })
       .def_property_readonly("hertz", [](const RunReport& r) { return hertz_object(r.hertz); })
-      .def_property_readonly("boussinesq", [](const RunReport& r) { return r.boussinesq ? py::cast(*r.boussinesq) : py::none(); },
-                             "Boussinesq's comparison for a scene pressed by a flat punch, else None")
+      .def_property_readonly(
+          "boussinesq", [](const RunReport& r) { return r.boussinesq ? py::cast(*r.boussinesq) : py::none(); },
+          "Boussinesq's comparison for a scene pressed by a flat punch, else None")
       .def_property_readonly("reactions", [](const RunReport& r) { return reactions_list(r.reactions, r.model->dim); })
       .def_property_readonly("dofs", [](const RunReport& r) { return r.qp->n_dofs(); })
       .def_property_readonly("constraints", [](const RunReport& r) { return r.qp->n_constraints(); })
@@ -230,11 +255,16 @@ element_order, warnings; json(), csv(), vtu() give the output files' text.)")
       .def_property_readonly("elements", [](const RunReport& r) { return r.model->mesh.n_elements(); })
       .def_property_readonly("element_order", [](const RunReport& r) { return r.model->mesh.order; })
       .def_readonly("warnings", &RunReport::warnings)
-      .def_property_readonly("qp", [](const RunReport& r) { return std::make_shared<QuadraticProgram>(*r.qp); },
-                             "the assembled QuadraticProgram (a copy), e.g. to solve it again with contactqp.solve()")
-      .def("json", [](const RunReport& r) { return result_json(r); }, "the result JSON, as `contactqp solve --json` writes it")
-      .def("csv", [](const RunReport& r) { return profile_csv(r); }, "the pressure profile CSV (--csv)")
-      .def("vtu", [](const RunReport& r) { return vtu_document(r); }, "the ParaView .vtu file (--vtu)")
+      .def_property_readonly(
+          "qp", [](const RunReport& r) { return std::make_shared<QuadraticProgram>(*r.qp); },
+          "the assembled QuadraticProgram (a copy), e.g. to solve it again with contactqp.solve()")
+      .def(
+          "json", [](const RunReport& r) { return result_json(r); },
+          "the result JSON, as `contactqp solve --json` writes it")
+      .def(
+          "csv", [](const RunReport& r) { return profile_csv(r); }, "the pressure profile CSV (--csv)")
+      .def(
+          "vtu", [](const RunReport& r) { return vtu_document(r); }, "the ParaView .vtu file (--vtu)")
       .def("__repr__", [](const RunReport& r) {
         return "<contactqp.SceneResult " + r.model->scene.source + " status=" + to_string(r.result.status) +
                " iterations=" + std::to_string(r.result.iterations) +
@@ -246,8 +276,9 @@ element_order, warnings; json(), csv(), vtu() give the output files' text.)")
       [](py::object path, py::object backend, py::object tol, py::object rho, py::object max_iterations,
          py::object observer, py::object verbose, py::object backend_options, py::object scale, bool no_contact,
          py::object max_elements) {
-        return std::make_shared<RunReport>(
-            run(path, {backend, tol, rho, max_iterations, verbose, backend_options, scale}, observer, no_contact, max_elements));
+        return std::make_shared<RunReport>(run(path,
+                                               {backend, tol, rho, max_iterations, verbose, backend_options, scale},
+                                               observer, no_contact, max_elements));
       },
       py::arg("path"), py::kw_only(), py::arg("backend") = py::none(), py::arg("tol") = py::none(),
       py::arg("rho") = py::none(), py::arg("max_iterations") = py::none(), py::arg("observer") = py::none(),
@@ -271,35 +302,45 @@ element_order, warnings; json(), csv(), vtu() give the output files' text.)")
       .def_property_readonly("u", [](const RunView& v) { return v.run().result.u; })
       .def_property_readonly("lam", [](const RunView& v) { return v.run().result.lambda; })
       .def_property_readonly("certificate", [](const RunView& v) { return v.run().certificate; })
-      .def_property_readonly("contact", [](const RunView& v) { return ContactView{v.report->model, v.run().contact}; })
-      .def_property_readonly("rel_diff_u", [](const RunView& v) { return v.run().rel_diff_u; }, "||u - u_ref|| / ||u_ref||, or None")
+      .def_property_readonly("contact",
+                             [](const RunView& v) {
+                               return ContactView{v.report->model, v.run().contact};
+                             })
+      .def_property_readonly(
+          "rel_diff_u", [](const RunView& v) { return v.run().rel_diff_u; }, "||u - u_ref|| / ||u_ref||, or None")
       .def_property_readonly("rel_diff_lambda", [](const RunView& v) { return v.run().rel_diff_lambda; })
       .def("__repr__", [](const RunView& v) {
-        return "<contactqp.BackendRun " + to_string(v.run().backend) + " status=" + to_string(v.run().result.status) + ">";
+        return "<contactqp.BackendRun " + to_string(v.run().backend) + " status=" + to_string(v.run().result.status) +
+               ">";
       });
 
   using Comparison = std::shared_ptr<CompareReport>;
   py::class_<CompareReport, Comparison>(m, "Comparison", "The report of contactqp.compare_scene().")
-      .def_property_readonly("runs", [](const Comparison& c) {
-        std::vector<RunView> runs;
-        for (int i = 0; i < static_cast<int>(c->runs.size()); ++i) runs.push_back({c, i});
-        return runs;
-      })
-      .def_property_readonly("reference", [](const Comparison& c) {
-        return c->reference >= 0 ? py::cast(c->runs[c->reference].backend) : py::none();
-      }, "the converged backend with the smallest certified gap, or None")
+      .def_property_readonly("runs",
+                             [](const Comparison& c) {
+                               std::vector<RunView> runs;
+                               for (int i = 0; i < static_cast<int>(c->runs.size()); ++i) runs.push_back({c, i});
+                               return runs;
+                             })
+      .def_property_readonly(
+          "reference",
+          [](const Comparison& c) { return c->reference >= 0 ? py::cast(c->runs[c->reference].backend) : py::none(); },
+          "the converged backend with the smallest certified gap, or None")
       .def_property_readonly("agree", [](const Comparison& c) { return c->agree; })
       .def_property_readonly("all_converged", [](const Comparison& c) { return c->all_converged; })
       .def_property_readonly("max_diff_u", [](const Comparison& c) { return c->max_diff_u; })
       .def_property_readonly("max_diff_lambda", [](const Comparison& c) { return c->max_diff_lambda; })
       .def_property_readonly("max_gap", [](const Comparison& c) { return c->max_gap; })
-      .def_property_readonly("bound", [](const Comparison& c) {
-        py::dict d;
-        d["u"] = c->bound.u;
-        d["lambda"] = c->bound.lambda;
-        d["gap"] = c->bound.gap;
-        return d;
-      }, "the agreement bounds {u, lambda, gap} at this tol")
+      .def_property_readonly(
+          "bound",
+          [](const Comparison& c) {
+            py::dict d;
+            d["u"] = c->bound.u;
+            d["lambda"] = c->bound.lambda;
+            d["gap"] = c->bound.gap;
+            return d;
+          },
+          "the agreement bounds {u, lambda, gap} at this tol")
       .def_property_readonly("tol", [](const Comparison& c) { return c->tol; })
       .def_property_readonly("dofs", [](const Comparison& c) { return c->qp->n_dofs(); })
       .def_property_readonly("constraints", [](const Comparison& c) { return c->qp->n_constraints(); })
@@ -307,7 +348,8 @@ element_order, warnings; json(), csv(), vtu() give the output files' text.)")
       .def_property_readonly("linear_solve_seconds", [](const Comparison& c) { return c->linear_solve_seconds; })
       .def_property_readonly("timings", [](const Comparison& c) { return to_dict(c->timings); })
       .def_property_readonly("warnings", [](const Comparison& c) { return c->warnings; })
-      .def("json", [](const Comparison& c) { return compare_json(*c); }, "the JSON `contactqp compare --json` writes");
+      .def(
+          "json", [](const Comparison& c) { return compare_json(*c); }, "the JSON `contactqp compare --json` writes");
 
   m.def(
       "compare_scene",

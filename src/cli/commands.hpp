@@ -26,8 +26,8 @@ struct SolveArguments {
   std::string json_path, csv_path, vtu_path;
   long long max_elements = BuildOptions{}.max_elements;
   bool verbose = false;
-  bool no_contact = false;  // drop the contact rows: one linear solve of the same K
-  std::string ordering;     // empty: SolveOptions' default (amd)
+  bool no_contact = false;    // drop the contact rows: one linear solve of the same K
+  std::string ordering;       // empty: SolveOptions' default (amd)
   std::string linear_solver;  // empty: the scene's solver.linear_solver (default cholmod)
   std::string petsc_options;  // PETSc options database entries, passed through unchanged
   bool petsc_options_given = false;
@@ -46,7 +46,8 @@ void add_backend_options(const std::vector<std::string>& pairs, SolveOptions& op
 
 // InputError when an output path is the scene file or another output's path (field, path pairs;
 // empty paths are not asked for).
-void check_distinct_outputs(const std::string& scene_path, const std::vector<std::pair<std::string, std::string>>& outputs);
+void check_distinct_outputs(const std::string& scene_path,
+                            const std::vector<std::pair<std::string, std::string>>& outputs);
 
 // printf into a std::string (one table line; at most 511 characters).
 std::string format(const char* pattern, ...) __attribute__((format(printf, 1, 2)));

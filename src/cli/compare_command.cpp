@@ -30,21 +30,21 @@ std::vector<Backend> parse_backend_list(const std::string& text) {
     const size_t comma = std::min(text.find(',', start), text.size());
     const std::string name = text.substr(start, comma - start);
     const Backend backend = parse_backend(name, "--backends");
-    if (!seen.insert(backend).second) throw InputError("--backends", "= " + text + ": \"" + name + "\" is listed twice");
+    if (!seen.insert(backend).second)
+      throw InputError("--backends", "= " + text + ": \"" + name + "\" is listed twice");
     backends.push_back(backend);
     start = comma + 1;
   }
   return backends;
 }
 
-std::string cell(double x, const char* pattern) {
-  return std::isfinite(x) ? format(pattern, x) : std::string("-");
-}
+std::string cell(double x, const char* pattern) { return std::isfinite(x) ? format(pattern, x) : std::string("-"); }
 
 // The contact zone's size column: the half-width b in 2D, the contact radius a in 3D.
 std::string table(const std::vector<BackendRun>& runs, int reference, int dim) {
-  std::string out = format("%-12s %-15s %6s %9s %17s %17s %10s %9s %9s %9s %10s %10s\n", "backend", "status", "iter",
-                           "time [s]", "J", "theta", "gap (rel)", "KKT max", "du (rel)", "dl (rel)", dim == 2 ? "b" : "a", "p0");
+  std::string out =
+      format("%-12s %-15s %6s %9s %17s %17s %10s %9s %9s %9s %10s %10s\n", "backend", "status", "iter", "time [s]", "J",
+             "theta", "gap (rel)", "KKT max", "du (rel)", "dl (rel)", dim == 2 ? "b" : "a", "p0");
   for (int i = 0; i < static_cast<int>(runs.size()); ++i) {
     const BackendRun& run = runs[i];
     const Certificate& c = run.certificate;
@@ -120,7 +120,8 @@ void add_compare_command(CLI::App& app, int& exit_status) {
   command->add_option("scene", solve.scene_path, "Scene file (JSON)")->required();
   command->add_option("--backends", arguments->backends,
                       "Comma-separated backends, e.g. uzawa,ipopt,nlopt (default: every available one)");
-  CLI::Option* tol = command->add_option("--tol", solve.tol, "Relative tolerance T of every backend (default: the scene's solver.tol)");
+  CLI::Option* tol = command->add_option("--tol", solve.tol,
+                                         "Relative tolerance T of every backend (default: the scene's solver.tol)");
   command->add_option("--rho", solve.rho, "Uzawa step: auto, a number, or a fraction of rho_max like 0.5x");
   CLI::Option* max_iterations =
       command->add_option("--max-iterations", solve.max_iterations, "Iteration limit of every backend (default 10000)");

@@ -28,14 +28,16 @@ void apply_overrides(const SolveArguments& arguments, SolveOptions& options) {
     // "--petsc-options= --verbose" hands CLI11 an empty value and it takes the next argument
     // instead: a value that starts with "--" is one of ours, not PETSc's.
     if (arguments.petsc_options.rfind("--", 0) == 0)
-      throw InputError("--petsc-options", "= \"" + arguments.petsc_options +
-                                              "\": is a contactqp option, not PETSc's; write --petsc-options=\"-ksp_type cg\"");
+      throw InputError("--petsc-options",
+                       "= \"" + arguments.petsc_options +
+                           "\": is a contactqp option, not PETSc's; write --petsc-options=\"-ksp_type cg\"");
     options.petsc_options = arguments.petsc_options;
   }
   add_backend_options(arguments.backend_options, options);
 }
 
-void check_distinct_outputs(const std::string& scene_path, const std::vector<std::pair<std::string, std::string>>& outputs) {
+void check_distinct_outputs(const std::string& scene_path,
+                            const std::vector<std::pair<std::string, std::string>>& outputs) {
   namespace fs = std::filesystem;
   std::error_code error;
   auto same = [&](const std::string& a, const std::string& b) {
@@ -58,8 +60,9 @@ int run_solve(const SolveArguments& arguments) {
   if (!arguments.json_path.empty()) check_output_path(arguments.json_path, "--json");
   if (!arguments.csv_path.empty()) check_output_path(arguments.csv_path, "--csv");
   if (!arguments.vtu_path.empty()) check_output_path(arguments.vtu_path, "--vtu");
-  check_distinct_outputs(arguments.scene_path, {{"--json", arguments.json_path}, {"--csv", arguments.csv_path},
-                                                {"--vtu", arguments.vtu_path}});
+  check_distinct_outputs(
+      arguments.scene_path,
+      {{"--json", arguments.json_path}, {"--csv", arguments.csv_path}, {"--vtu", arguments.vtu_path}});
   require(arguments.max_elements > 0, "--max-elements", arguments.max_elements, "must be positive");
   Scene scene = load_scene(arguments.scene_path);
   apply_overrides(arguments, scene.solver);
@@ -100,16 +103,19 @@ void add_linear_solver_options(CLI::App& command, SolveArguments& arguments) {
 
 void add_solve_command(CLI::App& app, int& exit_status) {
   auto arguments = std::make_shared<SolveArguments>();
-  CLI::App* command = app.add_subcommand("solve", "Solve one scene and report contact pressure, certificate and Hertz errors");
+  CLI::App* command =
+      app.add_subcommand("solve", "Solve one scene and report contact pressure, certificate and Hertz errors");
   command->add_option("scene", arguments->scene_path, "Scene file (JSON)")->required();
   command->add_option("--backend", arguments->backend, "Optimisation backend (overrides solver.backend)");
-  CLI::Option* tol = command->add_option("--tol", arguments->tol, "Relative tolerance of the stopping rule (default 1e-8)");
+  CLI::Option* tol =
+      command->add_option("--tol", arguments->tol, "Relative tolerance of the stopping rule (default 1e-8)");
   command->add_option("--rho", arguments->rho, "Uzawa step: auto, a number, or a fraction of rho_max like 0.5x");
   CLI::Option* max_iterations =
       command->add_option("--max-iterations", arguments->max_iterations, "Iteration limit (default 10000)");
   command->add_option("--json", arguments->json_path, "Write the result JSON here");
   command->add_option("--csv", arguments->csv_path, "Write the contact pressure profile CSV here");
-  command->add_option("--vtu", arguments->vtu_path, "Write the mesh, displacement, stresses, pressure and gap for ParaView (.vtu) here");
+  command->add_option("--vtu", arguments->vtu_path,
+                      "Write the mesh, displacement, stresses, pressure and gap for ParaView (.vtu) here");
   command->add_option("--max-elements", arguments->max_elements, "Refuse meshes with more triangles (default 4000000)");
   command->add_option("--backend-option", arguments->backend_options,
                       "key=value passed to the backend (repeatable); ipopt.key=value addresses one backend");

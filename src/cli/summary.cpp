@@ -23,10 +23,14 @@ namespace {
 std::string body_text(const Model& model) {
   const BodySpec& body = model.scene.body;
   std::string text;
-  if (body.shape == "half_disc" || body.shape == "hemisphere") text = format("%s R = %g", body.shape.c_str(), body.radius);
-  else if (body.shape == "rectangle") text = format("rectangle %g x %g", body.width, body.height);
-  else if (body.shape == "box") text = format("box %g x %g x %g", body.width, body.depth, body.height);
-  else text = "mesh " + body.file;
+  if (body.shape == "half_disc" || body.shape == "hemisphere")
+    text = format("%s R = %g", body.shape.c_str(), body.radius);
+  else if (body.shape == "rectangle")
+    text = format("rectangle %g x %g", body.width, body.height);
+  else if (body.shape == "box")
+    text = format("box %g x %g x %g", body.width, body.depth, body.height);
+  else
+    text = "mesh " + body.file;
   if (model.dim == 2) {
     const double degrees = std::atan2(model.rotation(1, 0), model.rotation(0, 0)) * 180 / 3.14159265358979323846;
     if (degrees != 0) text += format(" rotated %g°", degrees);
@@ -42,8 +46,8 @@ std::string hertz_line(const char* label, const HertzComparison& h) {
                   label, h.contact_radius, 100 * h.error_contact_radius, h.max_pressure, 100 * h.error_max_pressure,
                   100 * h.error_l2, h.radius, h.radius_source.c_str());
   return format("  %s b = %.6g (error %+.2f%%), p0 = %.6g (error %+.2f%%), L2 pressure error %.2f%% (R = %.6g, %s)\n",
-                label, h.half_width, 100 * h.error_half_width, h.max_pressure, 100 * h.error_max_pressure, 100 * h.error_l2,
-                h.radius, h.radius_source.c_str());
+                label, h.half_width, 100 * h.error_half_width, h.max_pressure, 100 * h.error_max_pressure,
+                100 * h.error_l2, h.radius, h.radius_source.c_str());
 }
 
 }  // namespace
@@ -72,28 +76,34 @@ std::string summary_table(const RunReport& report) {
   if (report.no_contact)
     out += format("  backend      none: contact rows dropped (--no-contact), one linear solve of K\n");
   else
-    out += format("  backend      %s%s, tol %g\n", to_string(report.options.backend).c_str(), rho.c_str(), report.options.tol);
+    out += format("  backend      %s%s, tol %g\n", to_string(report.options.backend).c_str(), rho.c_str(),
+                  report.options.tol);
   out += format("  status       %s after %d iterations: %s\n", to_string(result.status).c_str(), result.iterations,
                 result.message.c_str());
   out += format("  certificate  KKT stationarity %.2e, primal %.2e, dual %.2e, complementarity %.2e\n", c.stationarity,
                 c.primal_feasibility, c.dual_feasibility, c.complementarity);
   if (c.dual_available)
-    out += format("               J = %.10g, theta = %.10g, gap = %.2e (relative %.2e)\n", c.objective, c.dual_objective,
-                  c.duality_gap, c.relative_gap);
+    out += format("               J = %.10g, theta = %.10g, gap = %.2e (relative %.2e)\n", c.objective,
+                  c.dual_objective, c.duality_gap, c.relative_gap);
   const ContactSummary& contact = report.contact;
   if (solid)
-    out += format("  contact      force P = %.6g, radius a = %.6g (last node %.6g), area %.6g, max pressure p0 = %.6g, %d nodes\n",
-                  contact.total_force, contact.contact_radius, contact.contact_radius_last_node, contact.contact_area,
-                  contact.max_pressure, contact.contact_nodes);
+    out += format(
+        "  contact      force P = %.6g, radius a = %.6g (last node %.6g), area %.6g, max pressure p0 = %.6g, %d "
+        "nodes\n",
+        contact.total_force, contact.contact_radius, contact.contact_radius_last_node, contact.contact_area,
+        contact.max_pressure, contact.contact_nodes);
   else
-    out += format("  contact      force P = %.6g, half-width b = %.6g (last node %.6g), max pressure p0 = %.6g, %d nodes\n",
-                  contact.total_force, contact.half_width, contact.half_width_last_node, contact.max_pressure,
-                  contact.contact_nodes);
+    out += format(
+        "  contact      force P = %.6g, half-width b = %.6g (last node %.6g), max pressure p0 = %.6g, %d nodes\n",
+        contact.total_force, contact.half_width, contact.half_width_last_node, contact.max_pressure,
+        contact.contact_nodes);
   if (report.hertz) out += hertz_line("hertz       ", *report.hertz);
   if (report.boussinesq) {
     const PunchComparison& b = *report.boussinesq;
-    out += format("  boussinesq   P = 2 a E* delta = %.6g (a = %.6g, delta = %.6g): force error %+.2f%%, shape of p sqrt(a^2 - r^2) within %.2f%% for r <= 0.8 a\n",
-                  b.force, b.radius, b.approach, 100 * b.error_force, 100 * b.shape_error);
+    out += format(
+        "  boussinesq   P = 2 a E* delta = %.6g (a = %.6g, delta = %.6g): force error %+.2f%%, shape of p sqrt(a^2 - "
+        "r^2) within %.2f%% for r <= 0.8 a\n",
+        b.force, b.radius, b.approach, 100 * b.error_force, 100 * b.shape_error);
   }
   if (contact.obstacles.size() > 1) {
     for (const ObstacleContact& o : contact.obstacles) {
@@ -104,9 +114,10 @@ std::string summary_table(const RunReport& report) {
     }
   }
   for (const Reaction& r : report.reactions)
-    out += solid ? format("  reaction     %s on \"%s\": (%.6g, %.6g, %.6g)\n", r.load.c_str(), r.boundary.c_str(), r.force.x(),
-                          r.force.y(), r.force.z())
-                 : format("  reaction     %s on \"%s\": (%.6g, %.6g)\n", r.load.c_str(), r.boundary.c_str(), r.force.x(), r.force.y());
+    out += solid ? format("  reaction     %s on \"%s\": (%.6g, %.6g, %.6g)\n", r.load.c_str(), r.boundary.c_str(),
+                          r.force.x(), r.force.y(), r.force.z())
+                 : format("  reaction     %s on \"%s\": (%.6g, %.6g)\n", r.load.c_str(), r.boundary.c_str(),
+                          r.force.x(), r.force.y());
   std::string times;
   for (const auto& [phase, seconds] : report.timings.phases())
     if (phase != "total") times += format("%s %.3f, ", phase.c_str(), seconds);

@@ -3,8 +3,8 @@
 #include <limits>
 #include <map>
 
-#include "contact.hpp"
 #include "../fe/shape_functions.hpp"
+#include "contact.hpp"
 #include "contactqp/errors.hpp"
 
 namespace contactqp::detail {
@@ -74,8 +74,10 @@ BoundaryNodeGeometry boundary_geometry(const Mesh& mesh, const std::string& boun
   auto it = mesh.boundaries.find(boundary);
   if (it != mesh.boundaries.end()) {
     for (const BoundaryFace& face : it->second) {
-      if (mesh.dim == 2) add_edge(mesh, face, per_node);
-      else add_face(mesh, face, per_node);
+      if (mesh.dim == 2)
+        add_edge(mesh, face, per_node);
+      else
+        add_face(mesh, face, per_node);
     }
   }
   BoundaryNodeGeometry geometry;

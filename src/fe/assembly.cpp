@@ -41,11 +41,13 @@ void refuse_unrepresentable(const Model& model, const QuadraticProgram& qp) {
   if (largest_k < kSmallest)
     throw InputError("material.E", stiffness + ": the stiffness matrix underflows double precision; use other units");
   if (!qp.f.allFinite())
-    throw InputError("load", "gives a load vector that overflows double precision (forces or prescribed displacements "
-                             "too large for these units); use other units");
+    throw InputError("load",
+                     "gives a load vector that overflows double precision (forces or prescribed displacements "
+                     "too large for these units); use other units");
   if (largest_f > 0 && largest_f < kSmallest)
-    throw InputError("load", "gives a load vector that underflows double precision (forces or prescribed displacements "
-                             "too small for these units); use other units");
+    throw InputError("load",
+                     "gives a load vector that underflows double precision (forces or prescribed displacements "
+                     "too small for these units); use other units");
 }
 
 }  // namespace
@@ -89,7 +91,8 @@ QuadraticProgram assemble_qp(Model& model) {
   // to the reactions.
   for (int node = 0; node < mesh.n_nodes(); ++node) {
     Eigen::VectorXd force = model.nodal_force.segment(dim * node, dim);
-    if (!model.frame_of_node.empty() && model.frame_of_node[node] >= 0) force = dof_frame(model, node).transpose() * force;
+    if (!model.frame_of_node.empty() && model.frame_of_node[node] >= 0)
+      force = dof_frame(model, node).transpose() * force;
     for (int c = 0; c < dim; ++c)
       if (model.free_index[dim * node + c] >= 0) qp.f[model.free_index[dim * node + c]] += force[c];
   }

@@ -34,7 +34,7 @@ struct StrainPoint {
 template <int dim>
 StrainPoint<dim> strain_point(const Coordinates<dim>& X, const Eigen::Matrix<double, dim, Eigen::Dynamic>& dN) {
   const int npe = static_cast<int>(X.cols());
-  const Eigen::Matrix<double, dim, dim> J = dN * X.transpose();  // J(r, c) = d x_c / d ξ_r
+  const Eigen::Matrix<double, dim, dim> J = dN * X.transpose();              // J(r, c) = d x_c / d ξ_r
   const Eigen::Matrix<double, dim, Eigen::Dynamic> dNdx = J.inverse() * dN;  // rows d/dx, d/dy (, d/dz)
   StrainPoint<dim> p;
   p.detJ = std::abs(J.determinant());
@@ -169,14 +169,10 @@ Eigen::MatrixXd elasticity_matrix(ElasticModel model, const Material& material) 
   Eigen::Matrix3d D;
   if (model == ElasticModel::PlaneStrain) {
     const double c = E / ((1 + nu) * (1 - 2 * nu));
-    D << c * (1 - nu), c * nu, 0,
-         c * nu, c * (1 - nu), 0,
-         0, 0, c * (1 - 2 * nu) / 2;
+    D << c * (1 - nu), c * nu, 0, c * nu, c * (1 - nu), 0, 0, 0, c * (1 - 2 * nu) / 2;
   } else {
     const double c = E / (1 - nu * nu);
-    D << c, c * nu, 0,
-         c * nu, c, 0,
-         0, 0, c * (1 - nu) / 2;
+    D << c, c * nu, 0, c * nu, c, 0, 0, 0, c * (1 - nu) / 2;
   }
   return D;
 }
@@ -194,9 +190,7 @@ ElementLaw element_law(ElasticModel model, const Material& material, Formulation
     const double mu = law.shear;
     law.bulk = material.E / (3 * (1 - 2 * material.nu));
     Eigen::Matrix3d D;
-    D << 4 * mu / 3, -2 * mu / 3, 0,
-         -2 * mu / 3, 4 * mu / 3, 0,
-         0, 0, mu;
+    D << 4 * mu / 3, -2 * mu / 3, 0, -2 * mu / 3, 4 * mu / 3, 0, 0, 0, mu;
     law.D = D;
   }
   return law;
@@ -204,12 +198,17 @@ ElementLaw element_law(ElasticModel model, const Material& material, Formulation
 
 ElementLaw element_law(const Scene& scene) { return element_law(scene.model, scene.material, scene.body.formulation); }
 
-Eigen::MatrixXd element_stiffness(ElementType type, const Eigen::Vector3d* nodes, const ElementLaw& law, double thickness) {
+Eigen::MatrixXd element_stiffness(ElementType type, const Eigen::Vector3d* nodes, const ElementLaw& law,
+                                  double thickness) {
   switch (type) {
-    case ElementType::Tri3: return stiffness<2>(nodes, 1, law, thickness);
-    case ElementType::Tri6: return stiffness<2>(nodes, 2, law, thickness);
-    case ElementType::Tet4: return stiffness<3>(nodes, 1, law, 1.0);
-    case ElementType::Tet10: return stiffness<3>(nodes, 2, law, 1.0);
+    case ElementType::Tri3:
+      return stiffness<2>(nodes, 1, law, thickness);
+    case ElementType::Tri6:
+      return stiffness<2>(nodes, 2, law, thickness);
+    case ElementType::Tet4:
+      return stiffness<3>(nodes, 1, law, 1.0);
+    case ElementType::Tet10:
+      return stiffness<3>(nodes, 2, law, 1.0);
   }
   return {};
 }

@@ -42,7 +42,8 @@ void add_face_loads(const Mesh& mesh, const std::string& boundary, Traction trac
     for (int q = 0; q < n_points; ++q) {
       const Eigen::VectorXd N = shape_values(order, rule[q].xi, rule[q].eta);
       const Eigen::Matrix<double, 2, Eigen::Dynamic> dN = shape_gradients(order, rule[q].xi, rule[q].eta);
-      const Eigen::Vector3d a = Eigen::Vector3d(X * dN.row(0).transpose()).cross(Eigen::Vector3d(X * dN.row(1).transpose()));
+      const Eigen::Vector3d a =
+          Eigen::Vector3d(X * dN.row(0).transpose()).cross(Eigen::Vector3d(X * dN.row(1).transpose()));
       const Eigen::Vector3d t = traction(a) * rule[q].weight;
       for (int k = 0; k < face.n_nodes; ++k) f.segment<3>(3 * face.nodes[k]) += N[k] * t;
     }
@@ -137,15 +138,24 @@ Eigen::VectorXd nodal_forces(const Scene& scene, const Mesh& mesh, const std::ve
     const LoadSpec& load = scene.loads[l];
     if (load.type == "traction") {
       if (dim == 2)
-        add_edge_loads(mesh, load.boundary, thickness, [&](const Eigen::Vector2d& dx) { return Eigen::Vector2d(dx.norm() * load.vector.head<2>()); }, f);
+        add_edge_loads(
+            mesh, load.boundary, thickness,
+            [&](const Eigen::Vector2d& dx) { return Eigen::Vector2d(dx.norm() * load.vector.head<2>()); }, f);
       else
-        add_face_loads(mesh, load.boundary, [&](const Eigen::Vector3d& a) { return Eigen::Vector3d(a.norm() * load.vector); }, f);
+        add_face_loads(
+            mesh, load.boundary, [&](const Eigen::Vector3d& a) { return Eigen::Vector3d(a.norm() * load.vector); }, f);
     } else if (load.type == "pressure") {
       // t = −p n_out; in 2D n_out |dx| = (dx_y, −dx_x), in 3D n_out |a| = a.
       if (dim == 2)
-        add_edge_loads(mesh, load.boundary, thickness, [&](const Eigen::Vector2d& dx) { return Eigen::Vector2d(-load.pressure * Eigen::Vector2d(dx.y(), -dx.x())); }, f);
+        add_edge_loads(
+            mesh, load.boundary, thickness,
+            [&](const Eigen::Vector2d& dx) {
+              return Eigen::Vector2d(-load.pressure * Eigen::Vector2d(dx.y(), -dx.x()));
+            },
+            f);
       else
-        add_face_loads(mesh, load.boundary, [&](const Eigen::Vector3d& a) { return Eigen::Vector3d(-load.pressure * a); }, f);
+        add_face_loads(
+            mesh, load.boundary, [&](const Eigen::Vector3d& a) { return Eigen::Vector3d(-load.pressure * a); }, f);
     } else if (load.type == "gravity") {
       add_gravity(mesh, load, thickness, f);
     } else if (load.type == "point") {

@@ -12,7 +12,8 @@ const QuadraturePoint kDegree4[] = {{kA, kA, kWa}, {1 - 2 * kA, kA, kWa}, {kA, 1
 
 const TetrahedronPoint kTetCentroid[] = {{0.25, 0.25, 0.25, 1.0 / 6}};
 constexpr double kTa = 0.5854101966249685, kTb = 0.1381966011250105, kTw = 1.0 / 24;
-const TetrahedronPoint kTetDegree2[] = {{kTb, kTb, kTb, kTw}, {kTa, kTb, kTb, kTw}, {kTb, kTa, kTb, kTw}, {kTb, kTb, kTa, kTw}};
+const TetrahedronPoint kTetDegree2[] = {
+    {kTb, kTb, kTb, kTw}, {kTa, kTb, kTb, kTw}, {kTb, kTa, kTb, kTw}, {kTb, kTb, kTa, kTw}};
 
 // The vertex pairs of the mid-edge nodes 4–9.
 constexpr int kEdge[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
@@ -42,15 +43,14 @@ Eigen::VectorXd shape_values(int order, double xi, double eta) {
 Eigen::Matrix<double, 2, Eigen::Dynamic> shape_gradients(int order, double xi, double eta) {
   if (order == 1) {
     Eigen::Matrix<double, 2, Eigen::Dynamic> dN(2, 3);
-    dN << -1, 1, 0,
-          -1, 0, 1;
+    dN << -1, 1, 0, -1, 0, 1;
     return dN;
   }
   // Barycentric L0 = 1 − ξ − η, L1 = ξ, L2 = η; N = L0(2L0−1), L1(2L1−1), L2(2L2−1), 4L0L1, 4L1L2, 4L2L0.
   const double L0 = 1 - xi - eta, L1 = xi, L2 = eta;
   Eigen::Matrix<double, 2, Eigen::Dynamic> dN(2, 6);
-  dN << -(4 * L0 - 1), 4 * L1 - 1, 0, 4 * (L0 - L1), 4 * L2, -4 * L2,
-        -(4 * L0 - 1), 0, 4 * L2 - 1, -4 * L1, 4 * L1, 4 * (L0 - L2);
+  dN << -(4 * L0 - 1), 4 * L1 - 1, 0, 4 * (L0 - L1), 4 * L2, -4 * L2, -(4 * L0 - 1), 0, 4 * L2 - 1, -4 * L1, 4 * L1,
+      4 * (L0 - L2);
   return dN;
 }
 
@@ -96,9 +96,7 @@ Eigen::VectorXd tetrahedron_values(int order, double xi, double eta, double zeta
 Eigen::Matrix<double, 3, Eigen::Dynamic> tetrahedron_gradients(int order, double xi, double eta, double zeta) {
   // Barycentric L0 = 1 − ξ − η − ζ, L1 = ξ, L2 = η, L3 = ζ and their constant gradients.
   Eigen::Matrix<double, 3, 4> dL;
-  dL << -1, 1, 0, 0,
-        -1, 0, 1, 0,
-        -1, 0, 0, 1;
+  dL << -1, 1, 0, 0, -1, 0, 1, 0, -1, 0, 0, 1;
   if (order == 1) return dL;
   const double L[4] = {1 - xi - eta - zeta, xi, eta, zeta};
   Eigen::Matrix<double, 3, Eigen::Dynamic> dN(3, 10);
@@ -114,7 +112,8 @@ Eigen::Vector3d reference_tetrahedron_node(int i) {
   static const double vertex[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   if (i < 4) return {vertex[i][0], vertex[i][1], vertex[i][2]};
   const int a = kEdge[i - 4][0], b = kEdge[i - 4][1];
-  return 0.5 * (Eigen::Vector3d(vertex[a][0], vertex[a][1], vertex[a][2]) + Eigen::Vector3d(vertex[b][0], vertex[b][1], vertex[b][2]));
+  return 0.5 * (Eigen::Vector3d(vertex[a][0], vertex[a][1], vertex[a][2]) +
+                Eigen::Vector3d(vertex[b][0], vertex[b][1], vertex[b][2]));
 }
 
 }  // namespace contactqp::detail

@@ -90,12 +90,8 @@ json obstacles_json(const Model& model, const ContactSummary& contact) {
 json scene_json(const Model& model) {
   const Scene& scene = model.scene;
   constexpr double kDegrees = 180 / 3.14159265358979323846;
-  json out = {{"source", scene.source},
-              {"model", to_string(scene.model)},
-              {"E", number(scene.material.E)},
-              {"nu", number(scene.material.nu)},
-              {"shape", scene.body.shape},
-              {"symmetry", scene.body.symmetry}};
+  json out = {{"source", scene.source},          {"model", to_string(scene.model)}, {"E", number(scene.material.E)},
+              {"nu", number(scene.material.nu)}, {"shape", scene.body.shape},       {"symmetry", scene.body.symmetry}};
   if (model.dim == 2) {
     out["thickness"] = number(scene.body.thickness);
     out["rotate_degrees"] = number(std::atan2(model.rotation(1, 0), model.rotation(0, 0)) * kDegrees);
@@ -155,14 +151,12 @@ std::string result_json(const RunReport& report) {
   const ContactSummary& contact = report.contact;
   const int dim = model.dim;
   json& zone = out["contact"];
-  zone = {{"total_force", number(contact.total_force)},
-          {"max_pressure", number(contact.max_pressure)},
-          {"contact_nodes", contact.contact_nodes},
-          {"candidate_max_gap", number(model.max_gap)},
-          {"candidate_rule", model.max_gap_rule},
-          {"penetrating_non_candidates", contact.penetrating_non_candidates},
-          {"profile", profile_json(contact.profile)},  // 2D: [[s, p], ...]; 3D: [[r, p], ...] from the contact centre
-          {"obstacles", obstacles_json(model, contact)}};
+  zone = {
+      {"total_force", number(contact.total_force)}, {"max_pressure", number(contact.max_pressure)},
+      {"contact_nodes", contact.contact_nodes},     {"candidate_max_gap", number(model.max_gap)},
+      {"candidate_rule", model.max_gap_rule},       {"penetrating_non_candidates", contact.penetrating_non_candidates},
+      {"profile", profile_json(contact.profile)},  // 2D: [[s, p], ...]; 3D: [[r, p], ...] from the contact centre
+      {"obstacles", obstacles_json(model, contact)}};
   if (dim == 2) {
     zone["line_load"] = number(contact.line_load);
     zone["half_width"] = number(contact.half_width);

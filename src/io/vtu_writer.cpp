@@ -16,10 +16,14 @@ constexpr std::uint8_t kVtkTriangle = 5, kVtkQuadraticTriangle = 22, kVtkTetra =
 
 std::uint8_t vtk_cell_type(ElementType type) {
   switch (type) {
-    case ElementType::Tri3: return kVtkTriangle;
-    case ElementType::Tri6: return kVtkQuadraticTriangle;
-    case ElementType::Tet4: return kVtkTetra;
-    case ElementType::Tet10: return kVtkQuadraticTetra;  // our node order is VTK's
+    case ElementType::Tri3:
+      return kVtkTriangle;
+    case ElementType::Tri6:
+      return kVtkQuadraticTriangle;
+    case ElementType::Tet4:
+      return kVtkTetra;
+    case ElementType::Tet10:
+      return kVtkQuadraticTetra;  // our node order is VTK's
   }
   return kVtkTriangle;
 }
@@ -83,7 +87,8 @@ ContactFields contact_fields(const RunReport& report, const Eigen::VectorXd& dis
   const QuadraticProgram& qp = *report.qp;
   const int n = model.mesh.n_nodes();
   const int dim = model.dim;
-  ContactFields fields{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(dim * n), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
+  ContactFields fields{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(dim * n), Eigen::VectorXd::Zero(n),
+                       Eigen::VectorXd::Zero(n)};
   const Eigen::VectorXd& lambda = report.result.lambda;
   const Eigen::VectorXd slack = qp.g - qp.B * report.result.u;
   std::vector<bool> candidate(n, false);
@@ -127,7 +132,8 @@ std::string vtu_document(const RunReport& report) {
   for (int e = 0; e < mesh.n_elements(); ++e) offsets[e] = static_cast<std::int64_t>(npe) * (e + 1);
   const std::vector<std::uint8_t> types(mesh.n_elements(), vtk_cell_type(mesh.type()));
   const int dim = mesh.dim;
-  const std::string shear_3d = dim == 3 ? scalars("sigma_yz", stress.yz) + scalars("sigma_xz", stress.xz) : std::string();
+  const std::string shear_3d =
+      dim == 3 ? scalars("sigma_yz", stress.yz) + scalars("sigma_xz", stress.xz) : std::string();
 
   std::ostringstream out;
   out << "<?xml version=\"1.0\"?>\n"
@@ -137,10 +143,10 @@ std::string vtu_document(const RunReport& report) {
       << "    <Piece NumberOfPoints=\"" << mesh.n_nodes() << "\" NumberOfCells=\"" << mesh.n_elements() << "\">\n"
       << "      <PointData Scalars=\"von_mises\" Vectors=\"displacement\">\n"
       << vectors("displacement", displacement, dim) << scalars("sigma_xx", stress.xx) << scalars("sigma_yy", stress.yy)
-      << scalars("sigma_xy", stress.xy) << scalars("sigma_zz", stress.zz) << shear_3d << scalars("von_mises", stress.von_mises)
-      << scalars("contact_pressure", contact.pressure) << vectors("contact_force", contact.force, dim)
-      << scalars("gap", contact.gap) << scalars("contact_boundary", contact.mask)
-      << "      </PointData>\n"
+      << scalars("sigma_xy", stress.xy) << scalars("sigma_zz", stress.zz) << shear_3d
+      << scalars("von_mises", stress.von_mises) << scalars("contact_pressure", contact.pressure)
+      << vectors("contact_force", contact.force, dim) << scalars("gap", contact.gap)
+      << scalars("contact_boundary", contact.mask) << "      </PointData>\n"
       << "      <Points>\n"
       << data_array("Float64", "Points", 3, points) << "      </Points>\n"
       << "      <Cells>\n"

@@ -17,7 +17,8 @@ constexpr double kPi = 3.14159265358979323846;
 // The geometry is meshed in units of the height and scaled afterwards (as the rectangle is),
 // so a scaled scene has exactly the scaled mesh (lengths rounded: see unit_length).
 GradedSize unit_sizes(const BoxMeshRequest& request) {
-  return {unit_length(request.size, request.height), unit_length(request.contact_size, request.height), request.grading};
+  return {unit_length(request.size, request.height), unit_length(request.contact_size, request.height),
+          request.grading};
 }
 
 // The fine disc in units of the height: centre and radius.
@@ -120,8 +121,8 @@ Mesh mesh_box(const BoxMeshRequest& request) {
   const Eigen::Vector2d c = unit_centre(request);
   char outside[256];
   std::snprintf(outside, sizeof outside,
-                "Max(0, Sqrt((x - (%.17g))*(x - (%.17g)) + (y - (%.17g))*(y - (%.17g))) - (%.17g))", c.x(), c.x(), c.y(),
-                c.y(), unit_radius(request));
+                "Max(0, Sqrt((x - (%.17g))*(x - (%.17g)) + (y - (%.17g))*(y - (%.17g))) - (%.17g))", c.x(), c.x(),
+                c.y(), c.y(), unit_radius(request));
   const std::string distance = "Sqrt(" + std::string(outside) + "*" + outside + " + z*z)";
   set_graded_size_expression(unit_sizes(request), distance, request.volume_algorithm);
   gmsh::option::setNumber("Mesh.ElementOrder", request.order);

@@ -19,10 +19,10 @@ namespace contactqp::detail {
 struct BoxMeshRequest {
   double width = 1, depth = 1, height = 1;
   bool symmetry = false;
-  double size = 0.1;           // far-field element size (length)
-  double contact_size = 0.01;  // element size on the fine disc (length)
-  double grading = 0.1;        // size growth per unit distance from the fine disc
-  int order = 1;               // 1: 4-node tetrahedra; 2: 10-node
+  double size = 0.1;                                      // far-field element size (length)
+  double contact_size = 0.01;                             // element size on the fine disc (length)
+  double grading = 0.1;                                   // size growth per unit distance from the fine disc
+  int order = 1;                                          // 1: 4-node tetrahedra; 2: 10-node
   Eigen::Vector2d fine_centre = Eigen::Vector2d::Zero();  // (x, y) on the bottom face (length)
   double fine_radius = 0.1;                               // length; 0 refines at the centre only
   // > 0: the circle of this radius around fine_centre is embedded in the bottom face, so

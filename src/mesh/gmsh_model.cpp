@@ -75,8 +75,8 @@ void elements_by_type(int type, int entity, std::vector<std::size_t>& tags, std:
     int element_type;
     gmsh::model::mesh::getElement(tag, element_type, element_nodes);
     if (element_type != type)
-      throw std::runtime_error("element " + std::to_string(tag) + " is a " + type_name(element_type) +
-                               " among " + type_name(type) + " elements: use one order");
+      throw std::runtime_error("element " + std::to_string(tag) + " is a " + type_name(element_type) + " among " +
+                               type_name(type) + " elements: use one order");
     nodes.insert(nodes.end(), element_nodes.begin(), element_nodes.end());
   }
 }
@@ -98,8 +98,10 @@ int element_order(int dim, const std::vector<int>& entities) {
     std::vector<int> types;
     gmsh::model::mesh::getElementTypes(types, dim, entity);
     for (int type : types) {
-      if (type == body_type(dim, 1)) linear = true;
-      else if (type == body_type(dim, 2)) quadratic = true;
+      if (type == body_type(dim, 1))
+        linear = true;
+      else if (type == body_type(dim, 2))
+        quadratic = true;
       else
         throw std::runtime_error(what + std::to_string(entity) + " holds " + type_name(type) + " elements (Gmsh type " +
                                  std::to_string(type) + "): only " +
@@ -188,7 +190,7 @@ std::vector<BoundaryFace> faces_of(int dim, const std::vector<int>& entities, in
 }  // namespace
 
 GmshSession::GmshSession() : lock_(gmsh_mutex) {
-  gmsh::initialize(0, nullptr, false);  // no user configuration files: the same mesh everywhere
+  gmsh::initialize(0, nullptr, false);             // no user configuration files: the same mesh everywhere
   gmsh::option::setNumber("General.Terminal", 0);  // silent: contactqp reports, Gmsh does not
   gmsh::option::setNumber("General.Verbosity", 0);
   gmsh::option::setNumber("General.AbortOnError", 0);

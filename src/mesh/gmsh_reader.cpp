@@ -41,7 +41,8 @@ void mesh_geometry(const GmshFileRequest& request) {
 
 Mesh read_gmsh_file(const GmshFileRequest& request) {
   // Gmsh opens a missing file as an empty model without a word: check first.
-  if (!std::ifstream(request.path)) throw InputError(request.path, "cannot be read: " + std::string(std::strerror(errno)));
+  if (!std::ifstream(request.path))
+    throw InputError(request.path, "cannot be read: " + std::string(std::strerror(errno)));
   GmshSession session;
   try {
     gmsh::open(request.path);

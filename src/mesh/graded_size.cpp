@@ -112,8 +112,8 @@ void set_graded_size_expression(const GradedSize& sizes, const std::string& dist
   namespace field = gmsh::model::mesh::field;
   const int size_field = field::add("MathEval");
   char expression[512];
-  std::snprintf(expression, sizeof expression, "Min((%.17g), (%.17g) + (%.17g) * (%s))", sizes.size,
-                sizes.contact_size, sizes.grading, distance.c_str());
+  std::snprintf(expression, sizeof expression, "Min((%.17g), (%.17g) + (%.17g) * (%s))", sizes.size, sizes.contact_size,
+                sizes.grading, distance.c_str());
   field::setString(size_field, "F", expression);
   field::setAsBackgroundMesh(size_field);
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);

@@ -37,8 +37,8 @@ Mesh mesh_half_disc(const HalfDiscMeshRequest& request) {
 
   // Breakpoints of the arc: its ends, the ends of the fine arcs, and φ = 0 (Gmsh's circle
   // arcs must span less than π).
-  const std::vector<double> breaks =
-      breakpoints(phi_start, phi_end, request.fine, request.symmetry ? std::vector<double>{} : std::vector<double>{0.0});
+  const std::vector<double> breaks = breakpoints(phi_start, phi_end, request.fine,
+                                                 request.symmetry ? std::vector<double>{} : std::vector<double>{0.0});
 
   const int centre = geo::addPoint(0.0, 1.0, 0.0);
   std::vector<int> points;
@@ -65,7 +65,8 @@ Mesh mesh_half_disc(const HalfDiscMeshRequest& request) {
   geo::synchronize();
   gmsh::model::setPhysicalName(1, gmsh::model::addPhysicalGroup(1, arcs), "arc");
   gmsh::model::setPhysicalName(1, gmsh::model::addPhysicalGroup(1, {top}), "top");
-  if (symmetry_line >= 0) gmsh::model::setPhysicalName(1, gmsh::model::addPhysicalGroup(1, {symmetry_line}), "symmetry");
+  if (symmetry_line >= 0)
+    gmsh::model::setPhysicalName(1, gmsh::model::addPhysicalGroup(1, {symmetry_line}), "symmetry");
   gmsh::model::addPhysicalGroup(2, {surface});
 
   const double first = request.fine.empty() ? phi_start : request.fine.front().first;

@@ -17,10 +17,13 @@ constexpr double kPi = 3.14159265358979323846;
 // scene is then exactly the scaled mesh (Gmsh's geometric tolerances are absolute; lengths
 // are rounded in units of R, see unit_length).
 GradedSize unit_sizes(const HemisphereMeshRequest& request) {
-  return {unit_length(request.size, request.radius), unit_length(request.contact_size, request.radius), request.grading};
+  return {unit_length(request.size, request.radius), unit_length(request.contact_size, request.radius),
+          request.grading};
 }
 
-double unit_fine_radius(const HemisphereMeshRequest& request) { return unit_length(request.fine_radius, request.radius); }
+double unit_fine_radius(const HemisphereMeshRequest& request) {
+  return unit_length(request.fine_radius, request.radius);
+}
 
 // The area of the sphere |x| = ρ about the lowest point that lies in the half ball of radius 1
 // centred at (0, 0, 1): points of polar angle θ (from +z) with ρ²/2 ≤ z = ρ cos θ ≤ 1, so
@@ -70,10 +73,14 @@ Mesh mesh_hemisphere(const HemisphereMeshRequest& request) {
   for (const auto& [dim, tag] : faces) {
     double x0, y0, z0, x1, y1, z1;
     gmsh::model::getBoundingBox(dim, tag, x0, y0, z0, x1, y1, z1);
-    if (z0 > 1 - tolerance) top.push_back(tag);
-    else if (request.symmetry && x1 < tolerance) symmetry_x.push_back(tag);
-    else if (request.symmetry && y1 < tolerance) symmetry_y.push_back(tag);
-    else surface.push_back(tag);
+    if (z0 > 1 - tolerance)
+      top.push_back(tag);
+    else if (request.symmetry && x1 < tolerance)
+      symmetry_x.push_back(tag);
+    else if (request.symmetry && y1 < tolerance)
+      symmetry_y.push_back(tag);
+    else
+      surface.push_back(tag);
   }
   auto name = [](int dim, const std::vector<int>& tags, const char* text) {
     gmsh::model::setPhysicalName(dim, gmsh::model::addPhysicalGroup(dim, tags), text);

@@ -1,5 +1,5 @@
-#include <Eigen/Geometry>
 #include "contactqp/mesh.hpp"
+#include <Eigen/Geometry>
 
 #include <Eigen/LU>
 
@@ -65,15 +65,28 @@ FaceMap elements_of_faces(const Mesh& mesh) {
 // Where the Jacobian of a curved quadratic element is sampled: vertices, mid-sides, centroid
 // and interior points. det J is a polynomial of low degree, so a sign change shows at these
 // points for every misplacement a mesher makes in practice.
-const double kTriangleSamples[][2] = {{0, 0},     {1, 0},     {0, 1},       {0.5, 0},   {0.5, 0.5},
-                                      {0, 0.5},   {1.0 / 3, 1.0 / 3}, {0.1, 0.1}, {0.8, 0.1}, {0.1, 0.8},
-                                      {0.45, 0.1}, {0.45, 0.45}, {0.1, 0.45}};
-const double kTetrahedronSamples[][3] = {{0, 0, 0},       {1, 0, 0},       {0, 1, 0},       {0, 0, 1},
-                                         {0.5, 0, 0},     {0.5, 0.5, 0},   {0, 0.5, 0},     {0, 0, 0.5},
-                                         {0.5, 0, 0.5},   {0, 0.5, 0.5},   {0.25, 0.25, 0.25},
-                                         {1.0 / 3, 1.0 / 3, 0}, {1.0 / 3, 0, 1.0 / 3}, {0, 1.0 / 3, 1.0 / 3},
-                                         {1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.1, 0.1, 0.1}, {0.7, 0.1, 0.1},
-                                         {0.1, 0.7, 0.1}, {0.1, 0.1, 0.7}};
+const double kTriangleSamples[][2] = {
+    {0, 0},     {1, 0},     {0, 1},     {0.5, 0},    {0.5, 0.5},   {0, 0.5},   {1.0 / 3, 1.0 / 3},
+    {0.1, 0.1}, {0.8, 0.1}, {0.1, 0.8}, {0.45, 0.1}, {0.45, 0.45}, {0.1, 0.45}};
+const double kTetrahedronSamples[][3] = {{0, 0, 0},
+                                         {1, 0, 0},
+                                         {0, 1, 0},
+                                         {0, 0, 1},
+                                         {0.5, 0, 0},
+                                         {0.5, 0.5, 0},
+                                         {0, 0.5, 0},
+                                         {0, 0, 0.5},
+                                         {0.5, 0, 0.5},
+                                         {0, 0.5, 0.5},
+                                         {0.25, 0.25, 0.25},
+                                         {1.0 / 3, 1.0 / 3, 0},
+                                         {1.0 / 3, 0, 1.0 / 3},
+                                         {0, 1.0 / 3, 1.0 / 3},
+                                         {1.0 / 3, 1.0 / 3, 1.0 / 3},
+                                         {0.1, 0.1, 0.1},
+                                         {0.7, 0.1, 0.1},
+                                         {0.1, 0.7, 0.1},
+                                         {0.1, 0.1, 0.7}};
 
 double jacobian_6node(const Eigen::Vector3d* x, double xi, double eta) {
   const double L0 = 1 - xi - eta, L1 = xi, L2 = eta;
@@ -105,20 +118,28 @@ ElementType element_type(int dim, int order) {
 
 int nodes_per_element(ElementType type) {
   switch (type) {
-    case ElementType::Tri3: return 3;
-    case ElementType::Tri6: return 6;
-    case ElementType::Tet4: return 4;
-    case ElementType::Tet10: return 10;
+    case ElementType::Tri3:
+      return 3;
+    case ElementType::Tri6:
+      return 6;
+    case ElementType::Tet4:
+      return 4;
+    case ElementType::Tet10:
+      return 10;
   }
   return 0;
 }
 
 std::string to_string(ElementType type) {
   switch (type) {
-    case ElementType::Tri3: return "tri3";
-    case ElementType::Tri6: return "tri6";
-    case ElementType::Tet4: return "tet4";
-    case ElementType::Tet10: return "tet10";
+    case ElementType::Tri3:
+      return "tri3";
+    case ElementType::Tri6:
+      return "tri6";
+    case ElementType::Tet4:
+      return "tet4";
+    case ElementType::Tet10:
+      return "tet10";
   }
   return "?";
 }
@@ -133,10 +154,14 @@ const std::vector<std::vector<int>>& element_faces(ElementType type) {
   static const std::vector<std::vector<int>> tet10 = {
       {0, 2, 1, 6, 5, 4}, {0, 1, 3, 4, 8, 7}, {1, 2, 3, 5, 9, 8}, {0, 3, 2, 7, 9, 6}};
   switch (type) {
-    case ElementType::Tri3: return tri3;
-    case ElementType::Tri6: return tri6;
-    case ElementType::Tet4: return tet4;
-    case ElementType::Tet10: return tet10;
+    case ElementType::Tri3:
+      return tri3;
+    case ElementType::Tri6:
+      return tri6;
+    case ElementType::Tet4:
+      return tet4;
+    case ElementType::Tet10:
+      return tet10;
   }
   return tri3;
 }
@@ -249,12 +274,13 @@ void orient(Mesh& mesh) {
       const int* v = mesh.element(it->second.front().first);
       int other = v[0];
       for (int k = 0; k < nv; ++k)
-        if (std::find(face.nodes.begin(), face.nodes.begin() + mesh.dim, v[k]) == face.nodes.begin() + mesh.dim) other = v[k];
+        if (std::find(face.nodes.begin(), face.nodes.begin() + mesh.dim, v[k]) == face.nodes.begin() + mesh.dim)
+          other = v[k];
       const Eigen::Vector3d& a = mesh.nodes[face.nodes[0]];
-      const double side = mesh.dim == 2 ? cross2(mesh.nodes[face.nodes[1]] - a, mesh.nodes[other] - a)
-                                        : -(mesh.nodes[face.nodes[1]] - a)
-                                               .cross(mesh.nodes[face.nodes[2]] - a)
-                                               .dot(mesh.nodes[other] - a);
+      const double side =
+          mesh.dim == 2
+              ? cross2(mesh.nodes[face.nodes[1]] - a, mesh.nodes[other] - a)
+              : -(mesh.nodes[face.nodes[1]] - a).cross(mesh.nodes[face.nodes[2]] - a).dot(mesh.nodes[other] - a);
       if (side < 0) flip_face(mesh.dim, face);
     }
   }

@@ -19,8 +19,7 @@ GradedSize unit_sizes(const RectangleMeshRequest& request) {
 
 double fine_length(const RectangleMeshRequest& request) {
   for (const RectangleSide& side : rectangle_sides(request.width, request.height, request.symmetry))
-    if (side.name == request.fine_side)
-      return total_length(request.fine) * (side.b - side.a).norm();
+    if (side.name == request.fine_side) return total_length(request.fine) * (side.b - side.a).norm();
   return 0.0;
 }
 
@@ -67,7 +66,8 @@ Mesh mesh_rectangle(const RectangleMeshRequest& request) {
       curves_of_side[s].push_back(line);
       const double middle = 0.5 * (breaks[k] + breaks[k + 1]);
       if (fine && inside(request.fine, middle)) fine_curves.push_back(line);
-      if (fine && !request.fine.empty() && std::abs(breaks[k] - request.fine.front().first) < 1e-9) fallback_point = points[k];
+      if (fine && !request.fine.empty() && std::abs(breaks[k] - request.fine.front().first) < 1e-9)
+        fallback_point = points[k];
     }
   }
   const int surface = geo::addPlaneSurface({geo::addCurveLoop(loop)});

@@ -18,8 +18,8 @@ struct RectangleMeshRequest {
   double contact_size = 0.01;  // element size along the fine part (length)
   double grading = 0.1;        // size growth per unit distance from the fine part
   int order = 1;
-  std::string fine_side = "bottom";   // the side along which contact can happen
-  Intervals fine;  // the fine parts of that side, as parameters t ∈ [0, 1]
+  std::string fine_side = "bottom";  // the side along which contact can happen
+  Intervals fine;                    // the fine parts of that side, as parameters t ∈ [0, 1]
 };
 
 // One side of the rectangle, walked counter-clockwise (body on the left): x(t) = a + t (b − a).

@@ -6,9 +6,9 @@
 #include <limits>
 
 #include "../contact/contact.hpp"
+#include "../mesh/box_mesher.hpp"
 #include "../mesh/gmsh_model.hpp"
 #include "../mesh/gmsh_reader.hpp"
-#include "../mesh/box_mesher.hpp"
 #include "../mesh/half_disc_mesher.hpp"
 #include "../mesh/hemisphere_mesher.hpp"
 #include "../mesh/rectangle_mesher.hpp"
@@ -55,8 +55,10 @@ Intervals fine_intervals(const Curve& curve, const std::vector<ObstacleSpec>& ob
   Intervals merged;
   for (const auto& [from, to] : runs) {
     const double a = std::max(curve.t0, from - widen), b = std::min(curve.t1, to + widen);
-    if (!merged.empty() && a <= merged.back().second) merged.back().second = std::max(merged.back().second, b);
-    else merged.emplace_back(a, b);
+    if (!merged.empty() && a <= merged.back().second)
+      merged.back().second = std::max(merged.back().second, b);
+    else
+      merged.emplace_back(a, b);
   }
   return merged;
 }
@@ -159,7 +161,9 @@ Mesh mesh_hemisphere_body(const Scene& scene, double max_gap, const BuildOptions
   auto surface = [R](double r, double angle) {
     return Eigen::Vector3d(r * std::cos(angle), r * std::sin(angle), R - std::sqrt(std::max(0.0, R * R - r * r)));
   };
-  auto outward = [R, surface](double r, double angle) { return Eigen::Vector3d((surface(r, angle) - Eigen::Vector3d(0, 0, R)) / R); };
+  auto outward = [R, surface](double r, double angle) {
+    return Eigen::Vector3d((surface(r, angle) - Eigen::Vector3d(0, 0, R)) / R);
+  };
   request.fine_radius = fine_radius(surface, outward, R, scene.obstacles, max_gap, body.mesh.contact_size);
   refuse_oversized(estimate_hemisphere_elements(request), options, "tetrahedra");
   return generate([&] { return mesh_hemisphere(request); });
@@ -182,7 +186,8 @@ Mesh mesh_box_body(const Scene& scene, double max_gap, const BuildOptions& optio
   int punches = 0;
   for (const ObstacleSpec& obstacle : scene.obstacles)
     if (const auto* punch = obstacle.as<PunchObstacle>()) {
-      const bool centred = punch->center.head<2>().norm() <= 1e-12 * body.width && std::abs(punch->center.z()) <= 1e-12 * body.height &&
+      const bool centred = punch->center.head<2>().norm() <= 1e-12 * body.width &&
+                           std::abs(punch->center.z()) <= 1e-12 * body.height &&
                            std::abs(std::abs(punch->axis.z()) - 1) <= 1e-12;
       if (centred && ++punches == 1) request.rim_radius = punch->radius;
     }
@@ -195,23 +200,29 @@ Mesh mesh_box_body(const Scene& scene, double max_gap, const BuildOptions& optio
 
 Mesh mesh_body(const Scene& scene, double max_gap, const BuildOptions& options) {
   Mesh mesh;
-  if (scene.body.shape == "half_disc") mesh = mesh_half_disc_body(scene, max_gap, options);
-  else if (scene.body.shape == "rectangle") mesh = mesh_rectangle_body(scene, max_gap, options);
-  else if (scene.body.shape == "hemisphere") mesh = mesh_hemisphere_body(scene, max_gap, options);
-  else if (scene.body.shape == "box") mesh = mesh_box_body(scene, max_gap, options);
-  else mesh = read_gmsh_file({scene.body.file, scene.body.mesh.order, scene.body.mesh.size_factor});
+  if (scene.body.shape == "half_disc")
+    mesh = mesh_half_disc_body(scene, max_gap, options);
+  else if (scene.body.shape == "rectangle")
+    mesh = mesh_rectangle_body(scene, max_gap, options);
+  else if (scene.body.shape == "hemisphere")
+    mesh = mesh_hemisphere_body(scene, max_gap, options);
+  else if (scene.body.shape == "box")
+    mesh = mesh_box_body(scene, max_gap, options);
+  else
+    mesh = read_gmsh_file({scene.body.file, scene.body.mesh.order, scene.body.mesh.size_factor});
   if (scene.body.formulation == Formulation::Mixed && mesh.order != 2)
     throw InputError("body.formulation", "= \"mixed\": needs 6-node triangles, and " + scene.body.file +
                                              " holds 3-node ones (mesh it with gmsh -order 2)");
   if (mesh.dim != scene.dim())
-    throw InputError(scene.body.file, "holds a " + std::to_string(mesh.dim) + "D mesh (" + to_string(mesh.type()) +
-                                          " elements), but \"model\": \"" + to_string(scene.model) + "\" is " +
-                                          std::to_string(scene.dim()) + "D" +
-                                          (mesh.dim == 3 ? "; use \"model\": \"solid\"" : "; use plane_strain or plane_stress"));
+    throw InputError(scene.body.file,
+                     "holds a " + std::to_string(mesh.dim) + "D mesh (" + to_string(mesh.type()) +
+                         " elements), but \"model\": \"" + to_string(scene.model) + "\" is " +
+                         std::to_string(scene.dim()) + "D" +
+                         (mesh.dim == 3 ? "; use \"model\": \"solid\"" : "; use plane_strain or plane_stress"));
   if (mesh.n_elements() > options.max_elements)
-    throw InputError("body.mesh", "has " + std::to_string(mesh.n_elements()) + (mesh.dim == 2 ? " triangles" : " tetrahedra") +
-                                      ", more than the limit of " + std::to_string(options.max_elements) +
-                                      "; raise --max-elements");
+    throw InputError("body.mesh", "has " + std::to_string(mesh.n_elements()) +
+                                      (mesh.dim == 2 ? " triangles" : " tetrahedra") + ", more than the limit of " +
+                                      std::to_string(options.max_elements) + "; raise --max-elements");
   return mesh;
 }
 

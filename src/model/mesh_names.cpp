@@ -18,8 +18,8 @@ void require_name(const Map& names, const std::string& name, const std::string& 
   std::string list;
   for (const auto& word : valid) list += (list.empty() ? "" : ", ") + word;
   const std::string hint = nearest(name, valid);
-  throw InputError(field, "= \"" + name + "\": not a " + what + " of " + file + "; valid: " +
-                              (list.empty() ? "none (the file names no " + what + "s)" : list) +
+  throw InputError(field, "= \"" + name + "\": not a " + what + " of " + file +
+                              "; valid: " + (list.empty() ? "none (the file names no " + what + "s)" : list) +
                               (hint.empty() ? "" : "; did you mean \"" + hint + "\"?"));
 }
 
@@ -32,7 +32,8 @@ void check_mesh_names(const Scene& scene, const Mesh& mesh) {
   const std::string boundary_group = solid ? "physical surface" : "physical curve";
   const std::string region_group = solid ? "physical volume" : "physical surface";
   for (const LoadSpec& load : scene.loads) {
-    if (!load.boundary.empty()) require_name(mesh.boundaries, load.boundary, load.path + ".boundary", boundary_group, file);
+    if (!load.boundary.empty())
+      require_name(mesh.boundaries, load.boundary, load.path + ".boundary", boundary_group, file);
     if (!load.region.empty()) require_name(mesh.regions, load.region, load.path + ".region", region_group, file);
     if (!load.point.empty()) require_name(mesh.points, load.point, load.path + ".point", "physical point", file);
   }

@@ -53,22 +53,26 @@ void choose_max_gap(const Scene& scene, Model& model) {
 void warn_near_incompressible(const Scene& scene, const Mesh& mesh, std::vector<std::string>& warnings) {
   if (scene.model == ElasticModel::Solid) {
     // Tetrahedra lock as triangles do; there is no mixed formulation for them yet.
-    if ((mesh.order == 1 && scene.material.nu > kLinearLockingNu) || (mesh.order == 2 && scene.material.nu > kQuadraticLockingNu))
-      warnings.push_back("material.nu = " + detail::format_value(scene.material.nu) + " with " +
-                         (mesh.order == 1 ? "4-node" : "10-node") +
-                         " tetrahedra: they lock as nu -> 0.5 (too stiff: the force for a prescribed push is overstated)");
+    if ((mesh.order == 1 && scene.material.nu > kLinearLockingNu) ||
+        (mesh.order == 2 && scene.material.nu > kQuadraticLockingNu))
+      warnings.push_back(
+          "material.nu = " + detail::format_value(scene.material.nu) + " with " +
+          (mesh.order == 1 ? "4-node" : "10-node") +
+          " tetrahedra: they lock as nu -> 0.5 (too stiff: the force for a prescribed push is overstated)");
     return;
   }
   if (scene.model != ElasticModel::PlaneStrain || scene.body.formulation == Formulation::Mixed) return;
   const double nu = scene.material.nu;
   const std::string value = "material.nu = " + detail::format_value(nu);
   if (mesh.order == 1 && nu > kLinearLockingNu)
-    warnings.push_back(value + " with 3-node triangles in plane strain: they lock as nu -> 0.5 (too stiff: the force "
-                               "for a prescribed push is overstated); use \"formulation\": \"mixed\" under body "
-                               "(6-node triangles with a condensed pressure)");
+    warnings.push_back(value +
+                       " with 3-node triangles in plane strain: they lock as nu -> 0.5 (too stiff: the force "
+                       "for a prescribed push is overstated); use \"formulation\": \"mixed\" under body "
+                       "(6-node triangles with a condensed pressure)");
   else if (mesh.order == 2 && nu > kQuadraticLockingNu)
-    warnings.push_back(value + " with 6-node triangles in plane strain: they stiffen as nu -> 0.5; "
-                               "\"formulation\": \"mixed\" under body removes the locking");
+    warnings.push_back(value +
+                       " with 6-node triangles in plane strain: they stiffen as nu -> 0.5; "
+                       "\"formulation\": \"mixed\" under body removes the locking");
 }
 
 void rotate_mesh(Mesh& mesh, const Eigen::Matrix3d& rotation) {
@@ -84,7 +88,8 @@ void rotate_mesh(Mesh& mesh, const Eigen::Matrix3d& rotation) {
 }  // namespace
 
 Eigen::MatrixXd dof_frame(const Model& model, int node) {
-  if (model.frame_of_node.empty() || model.frame_of_node[node] < 0) return Eigen::MatrixXd::Identity(model.dim, model.dim);
+  if (model.frame_of_node.empty() || model.frame_of_node[node] < 0)
+    return Eigen::MatrixXd::Identity(model.dim, model.dim);
   return model.frames[model.frame_of_node[node]];
 }
 

@@ -25,13 +25,10 @@ Eigen::MatrixXd rigid_body_modes(const Model& model) {
   for (int node = 0; node < n_nodes; ++node) {
     const Eigen::Vector3d x = (mesh.nodes[node] - centroid) / extent;
     if (dim == 2) {
-      global << 1, 0, -x.y(),
-                0, 1, x.x();
+      global << 1, 0, -x.y(), 0, 1, x.x();
     } else {
       // Translations, then rotations about x, y, z: ω × x.
-      global << 1, 0, 0, 0, x.z(), -x.y(),
-                0, 1, 0, -x.z(), 0, x.x(),
-                0, 0, 1, x.y(), -x.x(), 0;
+      global << 1, 0, 0, 0, x.z(), -x.y(), 0, 1, 0, -x.z(), 0, x.x(), 0, 0, 1, x.y(), -x.x(), 0;
     }
     // Component c of a node's DOFs is along column c of its frame T: the value is (Tᵀ m)_c.
     const Eigen::MatrixXd local = dof_frame(model, node).transpose() * global;

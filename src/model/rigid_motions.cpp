@@ -11,8 +11,8 @@
 // have rank 3. The null space of those rows is what moves freely. In 3D the same with six
 // motions: translations t_x, t_y, t_z and rotations ω × (x − x_c)/ℓ, whose row is
 // [d, ((x − x_c) × d)/ℓ].
-#include <Eigen/Geometry>
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <numeric>
 #include <sstream>
@@ -85,9 +85,11 @@ FreeMotions describe(const Eigen::MatrixXd& null, const Eigen::Vector2d& centre,
     }
     return "rotation about (" + number(point.x(), extent) + ", " + number(point.y(), extent) + ")";
   };
-  const std::string hold_x = "prescribe u_x on some boundary (e.g. \"value\": [0, ...] instead of [null, ...]), or model half of a "
-                             "symmetric body with \"body.symmetry\": true";
-  const std::string hold_any = "add a displacement load that prescribes both components (\"value\": [ux, uy]) on a boundary";
+  const std::string hold_x =
+      "prescribe u_x on some boundary (e.g. \"value\": [0, ...] instead of [null, ...]), or model half of a "
+      "symmetric body with \"body.symmetry\": true";
+  const std::string hold_any =
+      "add a displacement load that prescribes both components (\"value\": [ux, uy]) on a boundary";
   if (k == 3) return {"translations in x and y and rotation", hold_any};
   if (k == 2) {
     // The translations in the null space: the vectors with c = 0, a plane through two 3-vectors.
@@ -106,7 +108,8 @@ FreeMotions describe(const Eigen::MatrixXd& null, const Eigen::Vector2d& centre,
     if (name == "y") return {"translation in y", "prescribe u_y on some boundary"};
     return {"translation " + name, hold_any};
   }
-  return {rotation_centre(v, Eigen::Vector2d::Zero()), "prescribe a displacement at a second point, away from that centre"};
+  return {rotation_centre(v, Eigen::Vector2d::Zero()),
+          "prescribe a displacement at a second point, away from that centre"};
 }
 
 std::string vector_text(const Eigen::Vector3d& d) {
@@ -180,23 +183,26 @@ void check_rigid_motions_3d(const Model& model) {
     while (k < 6 && !(values[k] > kNullTolerance * values[5])) ++k;
     if (k == 0) continue;
     const double l = extent[p] > 0 ? extent[p] : 1.0;
-    const std::string which =
-        n_parts == 1 ? "the body"
-                     : "the part of the body with node " + std::to_string(first_node[p]) + " at " +
-                           format_point(mesh.nodes[first_node[p]], 3);
-    throw InputError("load", "leaves " + which + " free to move rigidly (" + describe_3d(eigen.eigenvectors().leftCols(k), centre[p], l) +
-                                 "): no prescribed displacement stops it, so K is singular, and contact alone does not "
-                                 "hold a body here; prescribe displacements that block " +
-                                 (k == 6 ? "every motion (e.g. \"value\": [ux, uy, uz] on a face)" : "these motions") +
-                                 (model.scene.body.symmetry ? "" : ", or model a symmetric body's quarter with \"body.symmetry\": true"));
+    const std::string which = n_parts == 1 ? "the body"
+                                           : "the part of the body with node " + std::to_string(first_node[p]) +
+                                                 " at " + format_point(mesh.nodes[first_node[p]], 3);
+    throw InputError(
+        "load",
+        "leaves " + which + " free to move rigidly (" + describe_3d(eigen.eigenvectors().leftCols(k), centre[p], l) +
+            "): no prescribed displacement stops it, so K is singular, and contact alone does not "
+            "hold a body here; prescribe displacements that block " +
+            (k == 6 ? "every motion (e.g. \"value\": [ux, uy, uz] on a face)" : "these motions") +
+            (model.scene.body.symmetry ? "" : ", or model a symmetric body's quarter with \"body.symmetry\": true"));
   }
 }
 
 }  // namespace
 
 void check_rigid_motions(const Model& model) {
-  if (model.dim == 3) check_rigid_motions_3d(model);
-  else check_rigid_motions_2d(model);
+  if (model.dim == 3)
+    check_rigid_motions_3d(model);
+  else
+    check_rigid_motions_2d(model);
 }
 
 namespace {
@@ -214,7 +220,8 @@ void check_rigid_motions_2d(const Model& model) {
   for (int e = 0; e < mesh.n_elements(); ++e) {
     const int* v = mesh.element(e);
     const double a = std::abs(element_area(mesh, e));
-    centre[part[v[0]]] += a * (mesh.nodes[v[0]].head<2>() + mesh.nodes[v[1]].head<2>() + mesh.nodes[v[2]].head<2>()) / 3.0;
+    centre[part[v[0]]] +=
+        a * (mesh.nodes[v[0]].head<2>() + mesh.nodes[v[1]].head<2>() + mesh.nodes[v[2]].head<2>()) / 3.0;
     area[part[v[0]]] += a;
   }
   std::vector<double> extent(n_parts, 0.0);
@@ -244,14 +251,14 @@ void check_rigid_motions_2d(const Model& model) {
     while (k < 3 && !(values[k] > kNullTolerance * largest)) ++k;
     if (k == 0) continue;
     const FreeMotions free = describe(eigen.eigenvectors().leftCols(k), centre[p], extent[p] > 0 ? extent[p] : 1.0);
-    const std::string which =
-        n_parts == 1 ? "the body"
-                     : "the part of the body with node " + std::to_string(first_node[p]) + " at (" +
-                           number(mesh.nodes[first_node[p]].x(), extent[p]) + ", " +
-                           number(mesh.nodes[first_node[p]].y(), extent[p]) + ")";
+    const std::string which = n_parts == 1 ? "the body"
+                                           : "the part of the body with node " + std::to_string(first_node[p]) +
+                                                 " at (" + number(mesh.nodes[first_node[p]].x(), extent[p]) + ", " +
+                                                 number(mesh.nodes[first_node[p]].y(), extent[p]) + ")";
     throw InputError("load", "leaves " + which + " free to move rigidly (" + free.what +
                                  "): no prescribed displacement stops it, so K is singular, and contact alone does not "
-                                 "hold a body here; " + free.fix);
+                                 "hold a body here; " +
+                                 free.fix);
   }
 }
 

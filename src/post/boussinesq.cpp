@@ -58,10 +58,10 @@ std::optional<PunchComparison> compare_with_boussinesq(const Model& model, const
   out.error_force = (zone.total_force - out.force) / out.force;
   // The punch's centre, not the centre of pressure, is where r is measured from.
   const double loaded = 1e-8 * std::max(1e-300, [&] {
-    double m = 0;
-    for (const auto& p : zone.profile) m = std::max(m, p.force);
-    return m;
-  }());
+                          double m = 0;
+                          for (const auto& p : zone.profile) m = std::max(m, p.force);
+                          return m;
+                        }());
   for (const ContactProfilePoint& point : zone.profile) {
     const Eigen::Vector3d d = model.mesh.nodes[point.node] - punch->center;
     const double r = (d - d.dot(punch->axis) * punch->axis).norm();

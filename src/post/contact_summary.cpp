@@ -16,13 +16,15 @@ Eigen::Vector3d circle_origin(const Model& model, int obstacle) {
   for (const Candidate& candidate : model.candidates)
     if (candidate.obstacle == obstacle && (!closest || candidate.gap < closest->gap)) closest = &candidate;
   if (!closest) return Eigen::Vector3d::UnitY();
-  const Eigen::Vector3d d = model.mesh.nodes[closest->node] - model.scene.obstacles[obstacle].as<CircleObstacle>()->center;
+  const Eigen::Vector3d d =
+      model.mesh.nodes[closest->node] - model.scene.obstacles[obstacle].as<CircleObstacle>()->center;
   return d.norm() > 0 ? Eigen::Vector3d(d.normalized()) : Eigen::Vector3d::UnitY();
 }
 
 // Force, centre and widths of one obstacle's profile (sorted by s).
 // `axis`: the symmetry plane's direction (the scene's own y axis, turned by its transform).
-void measure(ObstacleContact& contact, bool symmetry, const Eigen::Vector3d& axis, double thickness, double lambda_max) {
+void measure(ObstacleContact& contact, bool symmetry, const Eigen::Vector3d& axis, double thickness,
+             double lambda_max) {
   // With symmetry the mirrored half adds the same push along the axis, the opposite across it.
   if (symmetry) contact.resultant = 2.0 * contact.resultant.dot(axis) * axis;
   const double loaded = 1e-8 * lambda_max;
@@ -178,7 +180,8 @@ ContactSummary summarize_contact(const Model& model, const QuadraticProgram& qp,
     summary.total_force += contact.total_force;
     summary.max_pressure = std::max(summary.max_pressure, contact.max_pressure);
     summary.contact_nodes += contact.contact_nodes;
-    if (contact.total_force > summary.obstacles[summary.main_obstacle].total_force) summary.main_obstacle = contact.obstacle;
+    if (contact.total_force > summary.obstacles[summary.main_obstacle].total_force)
+      summary.main_obstacle = contact.obstacle;
   }
   summary.line_load = summary.total_force / thickness;
   if (!summary.obstacles.empty()) {

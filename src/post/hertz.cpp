@@ -53,10 +53,10 @@ std::optional<double> fitted_body_curvature(const Model& model, const ObstacleCo
   const int dim = model.dim;
   std::vector<Eigen::Vector3d> points;
   const double loaded = 1e-8 * std::max(1e-300, [&] {
-    double m = 0;
-    for (const auto& p : contact.profile) m = std::max(m, p.force);
-    return m;
-  }());
+                          double m = 0;
+                          for (const auto& p : contact.profile) m = std::max(m, p.force);
+                          return m;
+                        }());
   for (const ContactProfilePoint& p : contact.profile)
     if (p.force > loaded) points.push_back(model.mesh.nodes[p.node]);
   if (static_cast<int>(points.size()) < (dim == 2 ? 4 : 6)) return std::nullopt;
@@ -77,7 +77,8 @@ std::optional<double> fitted_body_curvature(const Model& model, const ObstacleCo
   const double A = c[0], F = c[unknowns - 1];
   Eigen::Vector3d linear = Eigen::Vector3d::Zero();
   for (int k = 0; k < dim; ++k) linear[k] = c[1 + k];
-  const double gradient = std::sqrt(std::max(0.0, linear.squaredNorm() - 4 * A * F));  // |∇(A|y|² + D·y + F)| on the surface
+  const double gradient =
+      std::sqrt(std::max(0.0, linear.squaredNorm() - 4 * A * F));  // |∇(A|y|² + D·y + F)| on the surface
   if (!(gradient > 0)) return std::nullopt;
   // ∇ at the centroid (y = 0) is D; the body is convex when the side where the form is
   // negative (inside the circle for A > 0) is away from the obstacle, i.e. ∇ points at it.

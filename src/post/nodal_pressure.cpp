@@ -15,8 +15,10 @@ std::vector<double> nodal_pressures(const Model& model, const QuadraticProgram& 
   for (int i = 0; i < m; ++i) {
     const Candidate& c = model.candidates[i];
     row_of[{c.node, c.obstacle}] = i;
-    if (c.tributary > 0) pressure[i] = lambda[i] / (c.tributary * thickness);
-    else any_vertex = true;
+    if (c.tributary > 0)
+      pressure[i] = lambda[i] / (c.tributary * thickness);
+    else
+      any_vertex = true;
   }
   if (!any_vertex || model.dim != 3 || model.mesh.order != 2) return pressure;
   // Each vertex of a 6-node face (v0 v1 v2 m01 m12 m20) neighbours the two mid-sides beside it.

@@ -38,7 +38,7 @@ void add_triangles(const Model& model, const Eigen::VectorXd& displacement, Stre
     for (int i = 0; i < npe; ++i) {
       const Eigen::Vector2d at = detail::reference_node(i);
       const Eigen::Matrix<double, 2, Eigen::Dynamic> dN = detail::shape_gradients(mesh.order, at.x(), at.y());
-      const Eigen::Matrix2d J = dN * X.transpose();          // J(r, c) = d x_c / d ξ_r
+      const Eigen::Matrix2d J = dN * X.transpose();                                 // J(r, c) = d x_c / d ξ_r
       const Eigen::Matrix2d grad = (J.inverse() * dN * U.transpose()).transpose();  // grad(a, b) = d u_a / d x_b
       const Eigen::Vector3d strain(grad(0, 0), grad(1, 1), grad(0, 1) + grad(1, 0));
       Eigen::Vector4d s;
@@ -71,11 +71,13 @@ void add_tetrahedra(const Model& model, const Eigen::VectorXd& displacement, Str
     const double volume = std::abs(element_measure(mesh, e));
     for (int i = 0; i < npe; ++i) {
       const Eigen::Vector3d at = detail::reference_tetrahedron_node(i);
-      const Eigen::Matrix<double, 3, Eigen::Dynamic> dN = detail::tetrahedron_gradients(mesh.order, at.x(), at.y(), at.z());
+      const Eigen::Matrix<double, 3, Eigen::Dynamic> dN =
+          detail::tetrahedron_gradients(mesh.order, at.x(), at.y(), at.z());
       const Eigen::Matrix3d J = dN * X.transpose();
       const Eigen::Matrix3d grad = (J.inverse() * dN * U.transpose()).transpose();  // grad(a, b) = d u_a / d x_b
       Eigen::Matrix<double, 6, 1> strain;
-      strain << grad(0, 0), grad(1, 1), grad(2, 2), grad(1, 2) + grad(2, 1), grad(0, 2) + grad(2, 0), grad(0, 1) + grad(1, 0);
+      strain << grad(0, 0), grad(1, 1), grad(2, 2), grad(1, 2) + grad(2, 1), grad(0, 2) + grad(2, 0),
+          grad(0, 1) + grad(1, 0);
       const Eigen::Matrix<double, 6, 1> s = D * strain;  // xx, yy, zz, yz, xz, xy
       Eigen::Matrix<double, 6, 1> stored;
       stored << s[0], s[1], s[5], s[2], s[3], s[4];  // rows xx, yy, xy, zz, yz, xz
@@ -90,14 +92,17 @@ void add_tetrahedra(const Model& model, const Eigen::VectorXd& displacement, Str
 NodalStress nodal_stresses(const Model& model, const Eigen::VectorXd& displacement) {
   const int n = model.mesh.n_nodes();
   StressSums sums{Eigen::MatrixXd::Zero(6, n), Eigen::VectorXd::Zero(n)};
-  if (model.dim == 2) add_triangles(model, displacement, sums);
-  else add_tetrahedra(model, displacement, sums);
+  if (model.dim == 2)
+    add_triangles(model, displacement, sums);
+  else
+    add_tetrahedra(model, displacement, sums);
   NodalStress stress;
   for (Eigen::VectorXd* c : {&stress.xx, &stress.yy, &stress.xy, &stress.zz, &stress.yz, &stress.xz, &stress.von_mises})
     c->resize(n);
   for (int k = 0; k < n; ++k) {
-    const Eigen::Matrix<double, 6, 1> s =
-        sums.weight[k] > 0 ? Eigen::Matrix<double, 6, 1>(sums.sum.col(k) / sums.weight[k]) : Eigen::Matrix<double, 6, 1>::Zero();
+    const Eigen::Matrix<double, 6, 1> s = sums.weight[k] > 0
+                                              ? Eigen::Matrix<double, 6, 1>(sums.sum.col(k) / sums.weight[k])
+                                              : Eigen::Matrix<double, 6, 1>::Zero();
     const double xx = s[0], yy = s[1], xy = s[2], zz = s[3], yz = s[4], xz = s[5];
     stress.xx[k] = xx;
     stress.yy[k] = yy;
@@ -106,7 +111,8 @@ NodalStress nodal_stresses(const Model& model, const Eigen::VectorXd& displaceme
     stress.yz[k] = yz;
     stress.xz[k] = xz;
     const double shear = model.dim == 2 ? 3 * xy * xy : 3 * (xy * xy + yz * yz + xz * xz);
-    stress.von_mises[k] = std::sqrt(0.5 * ((xx - yy) * (xx - yy) + (yy - zz) * (yy - zz) + (zz - xx) * (zz - xx)) + shear);
+    stress.von_mises[k] =
+        std::sqrt(0.5 * ((xx - yy) * (xx - yy) + (yy - zz) * (yy - zz) + (zz - xx) * (zz - xx)) + shear);
   }
   return stress;
 }

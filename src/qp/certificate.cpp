@@ -37,7 +37,7 @@ Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorX
   Certificate c;
   const VectorXd Ku = qp.K * u;
   const VectorXd Btl = qp.B.transpose() * lambda;
-  const VectorXd r = Ku - qp.f + Btl;  // stationarity residual
+  const VectorXd r = Ku - qp.f + Btl;      // stationarity residual
   const VectorXd slack = qp.B * u - qp.g;  // ≤ 0 when feasible
 
   const double F = force_scale(qp, u, lambda);
@@ -46,11 +46,9 @@ Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorX
 
   c.stationarity = relative(inf_norm(r), F);
   c.primal_feasibility = relative(slack.size() ? std::max(0.0, slack.maxCoeff()) : 0.0, L);
-  c.dual_feasibility = relative(lambda.size() ? std::max(0.0, -lambda.minCoeff()) : 0.0,
-                                std::max(lambda_max, F));
+  c.dual_feasibility = relative(lambda.size() ? std::max(0.0, -lambda.minCoeff()) : 0.0, std::max(lambda_max, F));
   double complementarity = 0;
-  for (int i = 0; i < slack.size(); ++i)
-    complementarity = std::max(complementarity, std::abs(lambda[i] * slack[i]));
+  for (int i = 0; i < slack.size(); ++i) complementarity = std::max(complementarity, std::abs(lambda[i] * slack[i]));
   c.complementarity = relative(complementarity, std::max(lambda_max, F) * L);
 
   const double uKu = u.dot(Ku);
@@ -67,8 +65,8 @@ Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorX
     const VectorXd Kinv_r = K_factor->solve(r);
     c.dual_objective = lagrangian - 0.5 * r.dot(Kinv_r);
     c.duality_gap = c.objective - c.dual_objective;
-    const double energy = std::max({std::abs(c.objective), std::abs(c.dual_objective),
-                                    0.5 * std::abs(uKu), std::abs(qp.f.dot(u))});
+    const double energy =
+        std::max({std::abs(c.objective), std::abs(c.dual_objective), 0.5 * std::abs(uKu), std::abs(qp.f.dot(u))});
     c.relative_gap = relative(c.duality_gap, energy);
     if (!std::isfinite(c.dual_objective)) c.dual_available = false;
   } else {

@@ -33,7 +33,7 @@ struct CholeskyFactor::Impl {
   std::string message;
   double analyse_seconds = 0, factorize_seconds = 0;
   long long solves = 0;  // right-hand sides solved, under `mutex`
-  std::mutex mutex;  // CHOLMOD's workspace lives in `common`: one solve at a time
+  std::mutex mutex;      // CHOLMOD's workspace lives in `common`: one solve at a time
 
   Impl() {
     cholmod_start(&common);
@@ -80,7 +80,8 @@ CholeskyFactor::CholeskyFactor(const Eigen::SparseMatrix<double>& A_in, Ordering
     : impl_(std::make_shared<Impl>()) {
   Impl& m = *impl_;
   switch (ordering) {
-    case Ordering::Auto: break;  // nmethods = 0: AMD, then METIS too when AMD's fill is high
+    case Ordering::Auto:
+      break;  // nmethods = 0: AMD, then METIS too when AMD's fill is high
     case Ordering::Amd:
       m.common.nmethods = 1;
       m.common.method[0].ordering = CHOLMOD_AMD;
@@ -120,8 +121,8 @@ CholeskyFactor::CholeskyFactor(const Eigen::SparseMatrix<double>& A_in, Ordering
     const int minor = static_cast<int>(m.L->minor);
     const int* perm = static_cast<const int*>(m.L->Perm);
     m.failed_column = (perm && minor < m.n) ? perm[minor] : minor;
-    m.message = "not positive definite: the pivot of row " + std::to_string(m.failed_column) +
-                " of " + std::to_string(m.n) + " is not positive";
+    m.message = "not positive definite: the pivot of row " + std::to_string(m.failed_column) + " of " +
+                std::to_string(m.n) + " is not positive";
     return;
   }
   if (m.common.status < CHOLMOD_OK) {
@@ -131,8 +132,7 @@ CholeskyFactor::CholeskyFactor(const Eigen::SparseMatrix<double>& A_in, Ordering
   m.ok = true;
 }
 
-CholeskyFactor::CholeskyFactor(std::shared_ptr<Impl> impl, double scale)
-    : impl_(std::move(impl)), scale_(scale) {}
+CholeskyFactor::CholeskyFactor(std::shared_ptr<Impl> impl, double scale) : impl_(std::move(impl)), scale_(scale) {}
 
 CholeskyFactor::~CholeskyFactor() = default;
 
@@ -169,13 +169,20 @@ bool CholeskyFactor::supernodal() const { return impl_->L && impl_->L->is_super;
 std::string CholeskyFactor::ordering_name() const {
   if (!impl_->L) return "none";
   switch (impl_->L->ordering) {
-    case CHOLMOD_NATURAL: return "natural";
-    case CHOLMOD_GIVEN: return "given";
-    case CHOLMOD_AMD: return "amd";
-    case CHOLMOD_METIS: return "metis";
-    case CHOLMOD_NESDIS: return "nesdis";
-    case CHOLMOD_COLAMD: return "colamd";
-    case CHOLMOD_POSTORDERED: return "postordered";
+    case CHOLMOD_NATURAL:
+      return "natural";
+    case CHOLMOD_GIVEN:
+      return "given";
+    case CHOLMOD_AMD:
+      return "amd";
+    case CHOLMOD_METIS:
+      return "metis";
+    case CHOLMOD_NESDIS:
+      return "nesdis";
+    case CHOLMOD_COLAMD:
+      return "colamd";
+    case CHOLMOD_POSTORDERED:
+      return "postordered";
   }
   return "unknown";
 }
@@ -399,7 +406,7 @@ Condensation CholeskyFactor::condense(const Eigen::SparseMatrix<double>& C, cons
         update = Eigen::Map<const Eigen::VectorXd>(block.values + 1, below) * Ws;
       else
         dgemm_("N", "N", &below, &k, &block.ncols, &one, block.values + block.ncols, &block.nrows, Ws.data(),
-             &block.ncols, &zero, update.data(), &below);
+               &block.ncols, &zero, update.data(), &below);
       // Rows below come sorted in a supernode, so they fall into runs with one ancestor each.
       for (int q = 0; q < below;) {
         const int t = blocks.block_of(block.rows[block.ncols + q]);

@@ -20,8 +20,10 @@ constexpr int kCondenseBlock = 32;
 
 bool linear_solver_available(LinearSolverKind kind) {
   switch (kind) {
-    case LinearSolverKind::Cholmod: return true;
-    case LinearSolverKind::Petsc: return detail::petsc_available();
+    case LinearSolverKind::Cholmod:
+      return true;
+    case LinearSolverKind::Petsc:
+      return detail::petsc_available();
   }
   return false;
 }
@@ -59,7 +61,8 @@ void start_petsc_runtime(const std::string& petsc_options) { detail::start_petsc
 std::shared_ptr<const LinearSolver> make_linear_solver(const Eigen::SparseMatrix<double>& A,
                                                        const LinearSolverOptions& options) {
   switch (options.kind) {
-    case LinearSolverKind::Cholmod: return std::make_shared<const CholeskyFactor>(A, options.ordering);
+    case LinearSolverKind::Cholmod:
+      return std::make_shared<const CholeskyFactor>(A, options.ordering);
     case LinearSolverKind::Petsc:
       require(detail::petsc_available(), "linear_solver", to_string(options.kind),
               "PETSc was not built into this copy of contactqp (install petsc-dev and reconfigure with "

@@ -8,8 +8,8 @@
 namespace contactqp {
 namespace {
 
-const std::pair<LinearSolverKind, const char*> kLinearSolverNames[] = {
-    {LinearSolverKind::Cholmod, "cholmod"}, {LinearSolverKind::Petsc, "petsc"}};
+const std::pair<LinearSolverKind, const char*> kLinearSolverNames[] = {{LinearSolverKind::Cholmod, "cholmod"},
+                                                                       {LinearSolverKind::Petsc, "petsc"}};
 
 const std::pair<Ordering, const char*> kOrderingNames[] = {
     {Ordering::Auto, "auto"}, {Ordering::Amd, "amd"}, {Ordering::Metis, "metis"}};

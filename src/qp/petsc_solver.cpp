@@ -133,7 +133,8 @@ class PetscRuntime {
       argc_ = static_cast<int>(arguments_.size());
       char** argv = argv_.data();
       const PetscErrorCode code = PetscInitialize(&argc_, &argv, nullptr, nullptr);
-      if (code) throw InputError("linear_solver", "= \"petsc\": PETSc could not start (error " + std::to_string(code) + ")");
+      if (code)
+        throw InputError("linear_solver", "= \"petsc\": PETSc could not start (error " + std::to_string(code) + ")");
       std::atexit(finalize);
     } else {
       PetscOptionsInsertString(nullptr, options.c_str());
@@ -266,7 +267,8 @@ bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const Linea
   // Rows are distributed by PETSc (PETSC_DECIDE) and each rank sets only the rows it owns, from
   // its own copy of K for now; with a distributed assembly each rank will pass just its rows.
   PetscInt local_rows = PETSC_DECIDE, global_rows = n;
-  if ((code = PetscSplitOwnership(PETSC_COMM_WORLD, &local_rows, &global_rows))) return fail("PetscSplitOwnership", code);
+  if ((code = PetscSplitOwnership(PETSC_COMM_WORLD, &local_rows, &global_rows)))
+    return fail("PetscSplitOwnership", code);
   MPI_Scan(&local_rows, &end_row, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
   first_row = end_row - local_rows;
   if ((code = MatCreate(PETSC_COMM_WORLD, &A))) return fail("MatCreate", code);
@@ -313,7 +315,8 @@ bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const Linea
       VecRestoreArray(vectors[k], &local);
     }
     MatNullSpace space = nullptr;
-    code = MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(vectors.size()), vectors.data(), &space);
+    code = MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(vectors.size()), vectors.data(),
+                              &space);
     if (!code) code = MatSetNearNullSpace(A, space);
     MatNullSpaceDestroy(&space);
     for (Vec& v : vectors) VecDestroy(&v);
@@ -327,7 +330,7 @@ bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const Linea
   PC pc = nullptr;
   KSPGetPC(ksp, &pc);
   PCSetType(pc, PCGAMG);
-  KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED);  // the rule bounds the true residual
+  KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED);                        // the rule bounds the true residual
   KSPSetTolerances(ksp, 0.0, 0.0, PETSC_DEFAULT, kMaxKrylovIterations);  // only the inner rule stops
   KSPConvergedDefaultCreate(&default_test);
   KSPSetConvergenceTest(ksp, converged, this, nullptr);

@@ -10,11 +10,8 @@ namespace {
 
 // The one name table of the backends: the CLI, the scenes and the JSON use these names.
 const std::pair<Backend, const char*> kBackendNames[] = {
-    {Backend::Uzawa, "uzawa"},
-    {Backend::UzawaAccelerated, "uzawa_accel"},
-    {Backend::Ipopt, "ipopt"},
-    {Backend::Nlopt, "nlopt"},
-    {Backend::ActiveSet, "active_set"},
+    {Backend::Uzawa, "uzawa"}, {Backend::UzawaAccelerated, "uzawa_accel"}, {Backend::Ipopt, "ipopt"},
+    {Backend::Nlopt, "nlopt"}, {Backend::ActiveSet, "active_set"},
 };
 
 bool all_finite(const SparseMatrix& A) {
@@ -24,9 +21,7 @@ bool all_finite(const SparseMatrix& A) {
   return true;
 }
 
-std::string shape(const SparseMatrix& A) {
-  return std::to_string(A.rows()) + " × " + std::to_string(A.cols());
-}
+std::string shape(const SparseMatrix& A) { return std::to_string(A.rows()) + " × " + std::to_string(A.cols()); }
 
 }  // namespace
 
@@ -53,10 +48,14 @@ Backend parse_backend(const std::string& name, const std::string& field) {
 
 std::string to_string(Status status) {
   switch (status) {
-    case Status::Converged: return "converged";
-    case Status::MaxIterations: return "max_iterations";
-    case Status::Diverged: return "diverged";
-    case Status::NumericalError: return "numerical_error";
+    case Status::Converged:
+      return "converged";
+    case Status::MaxIterations:
+      return "max_iterations";
+    case Status::Diverged:
+      return "diverged";
+    case Status::NumericalError:
+      return "numerical_error";
   }
   return "unknown";
 }
@@ -65,14 +64,12 @@ void validate(const QuadraticProgram& qp) {
   const long n = qp.K.rows();
   if (qp.K.cols() != n) throw InputError("qp.K", "is " + shape(qp.K) + ": must be square");
   if (qp.f.size() != n)
-    throw InputError("qp.f", "has " + std::to_string(qp.f.size()) + " entries, K has " +
-                                 std::to_string(n) + " rows");
+    throw InputError("qp.f", "has " + std::to_string(qp.f.size()) + " entries, K has " + std::to_string(n) + " rows");
   if (qp.B.cols() != n)
-    throw InputError("qp.B", "has " + std::to_string(qp.B.cols()) + " columns, K has " +
-                                 std::to_string(n) + " rows");
+    throw InputError("qp.B", "has " + std::to_string(qp.B.cols()) + " columns, K has " + std::to_string(n) + " rows");
   if (qp.g.size() != qp.B.rows())
-    throw InputError("qp.g", "has " + std::to_string(qp.g.size()) + " entries, B has " +
-                                 std::to_string(qp.B.rows()) + " rows");
+    throw InputError("qp.g",
+                     "has " + std::to_string(qp.g.size()) + " entries, B has " + std::to_string(qp.B.rows()) + " rows");
   if (!qp.rows.empty() && static_cast<long>(qp.rows.size()) != qp.B.rows())
     throw InputError("qp.rows", "has " + std::to_string(qp.rows.size()) + " entries, B has " +
                                     std::to_string(qp.B.rows()) + " rows");
@@ -86,8 +83,6 @@ void validate(const QuadraticProgram& qp) {
   if (!qp.g.allFinite()) throw InputError("qp.g", "has an entry that is not finite");
 }
 
-double primal_objective(const QuadraticProgram& qp, const VectorXd& u) {
-  return 0.5 * u.dot(qp.K * u) - qp.f.dot(u);
-}
+double primal_objective(const QuadraticProgram& qp, const VectorXd& u) { return 0.5 * u.dot(qp.K * u) - qp.f.dot(u); }
 
 }  // namespace contactqp

@@ -30,7 +30,8 @@ json run_json(const BackendRun& run, double linear_solve_seconds, int dim) {
           {"kkt_max", number(c.kkt_max())},
           {"rel_diff_u", number(run.rel_diff_u)},
           {"rel_diff_lambda", number(run.rel_diff_lambda)},
-          {dim == 2 ? "half_width" : "contact_radius", number(dim == 2 ? run.contact.half_width : run.contact.contact_radius)},
+          {dim == 2 ? "half_width" : "contact_radius",
+           number(dim == 2 ? run.contact.half_width : run.contact.contact_radius)},
           {"max_pressure", number(run.contact.max_pressure)},
           {"total_force", number(run.contact.total_force)},
           {"timings", timings}};
@@ -54,7 +55,8 @@ std::string compare_json(const CompareReport& report) {
   out["factorize_seconds"] = number(report.factorize_seconds);
   out["linear_solve_seconds"] = number(report.linear_solve_seconds);
   json list = json::array();
-  for (const BackendRun& run : report.runs) list.push_back(run_json(run, report.linear_solve_seconds, report.model->dim));
+  for (const BackendRun& run : report.runs)
+    list.push_back(run_json(run, report.linear_solve_seconds, report.model->dim));
   out["runs"] = list;
   out["timings"] = {{"mesh", number(report.timings.get("mesh"))},
                     {"assemble", number(report.timings.get("assemble"))},

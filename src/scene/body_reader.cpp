@@ -49,7 +49,8 @@ MeshSpec read_generated_mesh(JsonObject mesh, Formulation formulation) {
 // elements and scale every size; a .msh file is the mesh as it is.
 MeshSpec read_geo_options(JsonObject mesh, Formulation formulation) {
   MeshSpec spec;
-  spec.order = formulation == Formulation::Mixed ? kMixedOrder : 0;  // 0: the .geo file's Mesh.ElementOrder, 1 by default
+  spec.order =
+      formulation == Formulation::Mixed ? kMixedOrder : 0;  // 0: the .geo file's Mesh.ElementOrder, 1 by default
   if (auto order = mesh.optional_integer("order")) {
     spec.order = *order;
     require(spec.order == 1 || spec.order == 2, mesh.path_of("order"), spec.order, "must be 1 or 2");
@@ -86,11 +87,14 @@ void read_mesh_file(JsonObject& body, BodySpec& spec, const std::string& source)
   spec.mesh = MeshSpec{};
   spec.mesh.order = 0;  // the element type Gmsh makes or the file holds decides
   if (extension == ".geo") {
-    if (body.has("mesh")) spec.mesh = read_geo_options(body.object("mesh"), spec.formulation);
-    else if (spec.formulation == Formulation::Mixed) spec.mesh.order = kMixedOrder;
+    if (body.has("mesh"))
+      spec.mesh = read_geo_options(body.object("mesh"), spec.formulation);
+    else if (spec.formulation == Formulation::Mixed)
+      spec.mesh.order = kMixedOrder;
   } else {
     if (body.has("mesh"))
-      throw InputError(body.path_of("mesh"), "is not valid for a .msh file: the file is the mesh (its element type decides the order)");
+      throw InputError(body.path_of("mesh"),
+                       "is not valid for a .msh file: the file is the mesh (its element type decides the order)");
   }
 }
 
@@ -103,8 +107,9 @@ BodySpec read_body(JsonObject body, const std::string& source, int dim) {
   if (std::find(shapes.begin(), shapes.end(), spec.shape) == shapes.end()) {
     const std::vector<std::string>& other = dim == 2 ? kShapes3d : kShapes2d;
     if (std::find(other.begin(), other.end(), spec.shape) != other.end())
-      throw InputError(body.path_of("shape"), "= \"" + spec.shape + "\": a " + (dim == 2 ? "3D" : "2D") + " shape, and the scene's model is " +
-                                                  (dim == 2 ? "2D (use \"model\": \"solid\")" : "solid (3D)") + "; valid: " + join(shapes));
+      throw InputError(body.path_of("shape"),
+                       "= \"" + spec.shape + "\": a " + (dim == 2 ? "3D" : "2D") + " shape, and the scene's model is " +
+                           (dim == 2 ? "2D (use \"model\": \"solid\")" : "solid (3D)") + "; valid: " + join(shapes));
     unknown_choice(body.path_of("shape"), spec.shape, "shape", shapes);
   }
   if (spec.shape == "half_disc" || spec.shape == "hemisphere") {
@@ -122,8 +127,10 @@ BodySpec read_body(JsonObject body, const std::string& source, int dim) {
   }
   spec.symmetry = body.optional_boolean("symmetry").value_or(false);
   if (auto formulation = body.optional_string("formulation")) {
-    if (*formulation == "mixed") spec.formulation = Formulation::Mixed;
-    else if (*formulation != "displacement") unknown_choice(body.path_of("formulation"), *formulation, "formulation", kFormulations);
+    if (*formulation == "mixed")
+      spec.formulation = Formulation::Mixed;
+    else if (*formulation != "displacement")
+      unknown_choice(body.path_of("formulation"), *formulation, "formulation", kFormulations);
   }
   if (auto thickness = dim == 2 ? body.optional_number("thickness") : std::nullopt) {  // 3D: no thickness
     spec.thickness = *thickness;
@@ -134,10 +141,15 @@ BodySpec read_body(JsonObject body, const std::string& source, int dim) {
   } else {
     spec.mesh = read_generated_mesh(body.object("mesh"), spec.formulation);
     const bool round = spec.shape == "half_disc" || spec.shape == "hemisphere";
-    const double extent = round ? spec.radius
-                                : std::min(spec.width, spec.shape == "box" ? std::min(spec.depth, spec.height) : spec.height);
+    const double extent =
+        round ? spec.radius
+              : std::min(spec.width, spec.shape == "box" ? std::min(spec.depth, spec.height) : spec.height);
     require(spec.mesh.contact_size <= extent, body.path_of("mesh.contact_size"), spec.mesh.contact_size,
-            "must not exceed the body's " + std::string(round ? "radius" : spec.shape == "box" ? "smallest side" : "smaller side") + " = " + format_value(extent));
+            "must not exceed the body's " +
+                std::string(round                 ? "radius"
+                            : spec.shape == "box" ? "smallest side"
+                                                  : "smaller side") +
+                " = " + format_value(extent));
   }
   body.finish();
   return spec;

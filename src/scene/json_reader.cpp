@@ -67,8 +67,7 @@ std::string nearest(const std::string& word, const std::vector<std::string>& val
   return best;
 }
 
-JsonObject::JsonObject(const nlohmann::json& value, std::string path)
-    : json_(value), path_(std::move(path)) {
+JsonObject::JsonObject(const nlohmann::json& value, std::string path) : json_(value), path_(std::move(path)) {
   if (!json_.is_object())
     throw InputError(path_.empty() ? "scene" : path_,
                      "= " + describe(json_) + ": must be an object, not " + type_name(json_));
@@ -79,9 +78,7 @@ bool JsonObject::has(const std::string& key) const {
   return json_.contains(key);
 }
 
-std::string JsonObject::path_of(const std::string& key) const {
-  return path_.empty() ? key : path_ + "." + key;
-}
+std::string JsonObject::path_of(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
 
 const nlohmann::json& JsonObject::required(const std::string& key) {
   if (!has(key)) {
@@ -122,8 +119,7 @@ std::optional<int> JsonObject::optional_integer(const std::string& key) {
 
 std::string JsonObject::string(const std::string& key) {
   const nlohmann::json& v = required(key);
-  if (!v.is_string())
-    throw InputError(path_of(key), "= " + describe(v) + ": must be a string, not " + type_name(v));
+  if (!v.is_string()) throw InputError(path_of(key), "= " + describe(v) + ": must be a string, not " + type_name(v));
   return v.get<std::string>();
 }
 
@@ -148,8 +144,9 @@ void JsonObject::finish(const std::vector<std::string>& also_valid) const {
   for (const auto& item : json_.items()) {
     if (read_.count(item.key())) continue;
     const std::string hint = nearest(item.key(), valid);
-    throw InputError(path_of(item.key()),
-                     "is not a valid key" + (hint.empty() ? std::string() : "; did you mean \"" + path_of(hint) + "\"?"));
+    throw InputError(
+        path_of(item.key()),
+        "is not a valid key" + (hint.empty() ? std::string() : "; did you mean \"" + path_of(hint) + "\"?"));
   }
 }
 

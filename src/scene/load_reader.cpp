@@ -14,30 +14,34 @@ void read_displacement(JsonObject& load, LoadSpec& spec, int dim) {
   const nlohmann::json& value = load.value("value");
   const std::string path = load.path_of("value");
   if (!value.is_array() || static_cast<int>(value.size()) != dim)
-    throw InputError(path, "= " + describe(value) + (dim == 2 ? ": must be [ux, uy], a component null when free"
-                                                              : ": must be [ux, uy, uz], a component null when free"));
+    throw InputError(path, "= " + describe(value) +
+                               (dim == 2 ? ": must be [ux, uy], a component null when free"
+                                         : ": must be [ux, uy, uz], a component null when free"));
   bool any = false;
   for (int c = 0; c < dim; ++c)
     if (!value[c].is_null()) {
       spec.value[c] = as_number(value[c], path + "[" + std::to_string(c) + "]");
       any = true;
     }
-  if (!any) throw InputError(path, std::string(dim == 2 ? "= [null, null]" : "= [null, null, null]") + ": prescribe at least one component");
+  if (!any)
+    throw InputError(
+        path, std::string(dim == 2 ? "= [null, null]" : "= [null, null, null]") + ": prescribe at least one component");
 }
 
 void read_point(JsonObject& load, LoadSpec& spec, const BodySpec& body, int dim) {
   spec.vector = read_vector(load.value("value"), load.path_of("value"), dim);
   const bool has_at = load.has("at"), has_point = load.has("point");
   if (has_at == has_point)
-    throw InputError(load.path(), std::string(has_at ? "has both" : "needs one of") + " \"at\": " +
-                                    (dim == 2 ? "[x, y]" : "[x, y, z]") +
-                                    " (the nearest node takes the force) and \"point\": a physical point's name");
+    throw InputError(load.path(), std::string(has_at ? "has both" : "needs one of") +
+                                      " \"at\": " + (dim == 2 ? "[x, y]" : "[x, y, z]") +
+                                      " (the nearest node takes the force) and \"point\": a physical point's name");
   if (has_at) spec.at = read_vector(load.value("at"), load.path_of("at"), dim);
   if (has_point) {
     spec.point = load.string("point");
     if (body.shape != "mesh")
-      throw InputError(load.path_of("point"), "= \"" + spec.point + "\": a " + body.shape +
-                                                  " has no named points; give \"at\": " + (dim == 2 ? "[x, y]" : "[x, y, z]") + " instead");
+      throw InputError(load.path_of("point"),
+                       "= \"" + spec.point + "\": a " + body.shape +
+                           " has no named points; give \"at\": " + (dim == 2 ? "[x, y]" : "[x, y, z]") + " instead");
   }
 }
 

@@ -36,7 +36,8 @@ void check_profile(const std::vector<Eigen::Vector3d>& p, const std::string& pat
   for (size_t i = 1; i < n; ++i) extent = std::max(extent, (p[i] - p[0]).norm());
   for (size_t i = 0; i + 1 < n; ++i)
     if (!((p[i + 1] - p[i]).norm() > 1e-12 * extent))
-      throw InputError(path + "[" + std::to_string(i + 1) + "]", "repeats the point before it: consecutive points must differ");
+      throw InputError(path + "[" + std::to_string(i + 1) + "]",
+                       "repeats the point before it: consecutive points must differ");
   for (size_t i = 0; i + 2 < n; ++i) {
     const Eigen::Vector3d u = (p[i + 1] - p[i]).normalized(), v = (p[i + 2] - p[i + 1]).normalized();
     if (u.dot(v) < -1 + 1e-12)
@@ -54,7 +55,8 @@ ProfileObstacle read_profile(JsonObject& obstacle) {
   const std::string path = obstacle.path_of("points");
   if (!points.is_array() || points.size() < 2)
     throw InputError(path, "= " + describe(points) + ": must be an array of at least two points [[x, y], ...]");
-  for (size_t i = 0; i < points.size(); ++i) spec.points.push_back(read_vector(points[i], path + "[" + std::to_string(i) + "]", 2));
+  for (size_t i = 0; i < points.size(); ++i)
+    spec.points.push_back(read_vector(points[i], path + "[" + std::to_string(i) + "]", 2));
   check_profile(spec.points, path);
   const std::string side = obstacle.string("body_side");
   if (side != "left" && side != "right") unknown_choice(obstacle.path_of("body_side"), side, "side", {"left", "right"});
@@ -78,10 +80,9 @@ ObstacleSpec read_obstacle(JsonObject obstacle, int dim) {
   if (std::find(types.begin(), types.end(), type) == types.end()) {
     const std::vector<std::string>& other = dim == 2 ? kObstacleTypes3d : kObstacleTypes2d;
     if (std::find(other.begin(), other.end(), type) != other.end())
-      throw InputError(obstacle.path_of("type"), "= \"" + type + "\": a " + (dim == 2 ? "3D" : "2D") +
-                                                     " obstacle, and the scene's model is " +
-                                                     (dim == 2 ? "2D (use \"model\": \"solid\")" : "solid (3D)") +
-                                                     "; valid: " + join(types));
+      throw InputError(obstacle.path_of("type"),
+                       "= \"" + type + "\": a " + (dim == 2 ? "3D" : "2D") + " obstacle, and the scene's model is " +
+                           (dim == 2 ? "2D (use \"model\": \"solid\")" : "solid (3D)") + "; valid: " + join(types));
     unknown_choice(obstacle.path_of("type"), type, "obstacle type", types);
   }
   auto vector = [&](const char* key) { return read_vector(obstacle.value(key), obstacle.path_of(key), dim); };

@@ -29,8 +29,10 @@ namespace detail {
 
 Eigen::Vector3d read_vector(const json& value, const std::string& path, int dim) {
   if (!value.is_array() || static_cast<int>(value.size()) != dim)
-    throw InputError(path, "= " + describe(value) + (dim == 2 ? ": must be an array of two numbers [x, y]"
-                                                              : ": must be an array of three numbers [x, y, z] (\"model\": \"solid\" is 3D)"));
+    throw InputError(path,
+                     "= " + describe(value) +
+                         (dim == 2 ? ": must be an array of two numbers [x, y]"
+                                   : ": must be an array of three numbers [x, y, z] (\"model\": \"solid\" is 3D)"));
   Eigen::Vector3d x = Eigen::Vector3d::Zero();
   for (int c = 0; c < dim; ++c) x[c] = as_number(value[c], path + "[" + std::to_string(c) + "]");
   return x;
@@ -123,7 +125,8 @@ void read_solver(JsonObject solver, SolveOptions& options) {
     } else if (rho.is_string()) {
       options.uzawa = parse_rho(rho.get<std::string>(), solver.path_of("rho"));
     } else {
-      throw InputError(solver.path_of("rho"), "= " + describe(rho) + ": must be \"auto\", a number, or a fraction of ρ_max such as \"0.5x\"");
+      throw InputError(solver.path_of("rho"),
+                       "= " + describe(rho) + ": must be \"auto\", a number, or a fraction of ρ_max such as \"0.5x\"");
     }
   }
   if (auto max_iterations = solver.optional_integer("max_iterations")) {
@@ -134,12 +137,14 @@ void read_solver(JsonObject solver, SolveOptions& options) {
     // Backend options as in --backend-option key=value; the backend checks keys and values.
     const json& entries = solver.value("options");
     const std::string path = solver.path_of("options");
-    if (!entries.is_object())
-      throw InputError(path, "= " + describe(entries) + ": must be an object {\"key\": value}");
+    if (!entries.is_object()) throw InputError(path, "= " + describe(entries) + ": must be an object {\"key\": value}");
     for (const auto& [key, value] : entries.items()) {
-      if (value.is_string()) options.backend_options[key] = value.get<std::string>();
-      else if (value.is_number()) options.backend_options[key] = value.dump();
-      else throw InputError(path + "." + key, "= " + describe(value) + ": must be a string or a number");
+      if (value.is_string())
+        options.backend_options[key] = value.get<std::string>();
+      else if (value.is_number())
+        options.backend_options[key] = value.dump();
+      else
+        throw InputError(path + "." + key, "= " + describe(value) + ": must be a string or a number");
     }
   }
   solver.finish();
@@ -149,9 +154,12 @@ void read_solver(JsonObject solver, SolveOptions& options) {
 
 std::string to_string(ElasticModel model) {
   switch (model) {
-    case ElasticModel::PlaneStrain: return "plane_strain";
-    case ElasticModel::PlaneStress: return "plane_stress";
-    case ElasticModel::Solid: return "solid";
+    case ElasticModel::PlaneStrain:
+      return "plane_strain";
+    case ElasticModel::PlaneStress:
+      return "plane_stress";
+    case ElasticModel::Solid:
+      return "solid";
   }
   return "?";
 }
@@ -165,15 +173,16 @@ std::vector<std::string> symmetry_boundaries(int dim) {
 
 int symmetry_component(const std::string& boundary) { return boundary == "symmetry_y" ? 1 : 0; }
 
-std::string to_string(Formulation formulation) {
-  return formulation == Formulation::Mixed ? "mixed" : "displacement";
-}
+std::string to_string(Formulation formulation) { return formulation == Formulation::Mixed ? "mixed" : "displacement"; }
 
 std::vector<std::string> boundary_names(const BodySpec& body) {
   std::vector<std::string> names;
-  if (body.shape == "half_disc") names = {"arc", "top"};
-  else if (body.shape == "rectangle") names = {"bottom", "right", "top", body.symmetry ? "" : "left"};
-  else if (body.shape == "hemisphere") names = {"surface", "top"};
+  if (body.shape == "half_disc")
+    names = {"arc", "top"};
+  else if (body.shape == "rectangle")
+    names = {"bottom", "right", "top", body.symmetry ? "" : "left"};
+  else if (body.shape == "hemisphere")
+    names = {"surface", "top"};
   else if (body.shape == "box")
     names = {"bottom", "top", body.symmetry ? "" : "left", "right", body.symmetry ? "" : "front", "back"};
   names.erase(std::remove(names.begin(), names.end(), ""), names.end());
@@ -201,7 +210,9 @@ UzawaOptions parse_rho(const std::string& text, const std::string& field) {
     used = 0;
   }
   if (used == 0 || used != number.size() || !std::isfinite(value) || !(value > 0))
-    throw InputError(field, "= \"" + text + "\": must be \"auto\", a positive number, or a positive fraction of ρ_max such as \"0.5x\"");
+    throw InputError(
+        field,
+        "= \"" + text + "\": must be \"auto\", a positive number, or a positive fraction of ρ_max such as \"0.5x\"");
   options.rho = value;
   return options;
 }
@@ -213,8 +224,8 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   constexpr int kMaxDepth = 64;
   const json::parser_callback_t limit_depth = [&](int depth, json::parse_event_t event, json&) {
     if (depth > kMaxDepth && (event == json::parse_event_t::object_start || event == json::parse_event_t::array_start))
-      throw InputError(source, "is not a scene: arrays and objects nested deeper than " + std::to_string(kMaxDepth) +
-                                   " levels");
+      throw InputError(
+          source, "is not a scene: arrays and objects nested deeper than " + std::to_string(kMaxDepth) + " levels");
     return true;
   };
   try {
@@ -234,9 +245,12 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   root.optional_string("description");  // free text for the reader of the scene file
 
   if (auto model = root.optional_string("model")) {
-    if (*model == "plane_strain") scene.model = ElasticModel::PlaneStrain;
-    else if (*model == "plane_stress") scene.model = ElasticModel::PlaneStress;
-    else if (*model == "solid") scene.model = ElasticModel::Solid;
+    if (*model == "plane_strain")
+      scene.model = ElasticModel::PlaneStrain;
+    else if (*model == "plane_stress")
+      scene.model = ElasticModel::PlaneStress;
+    else if (*model == "solid")
+      scene.model = ElasticModel::Solid;
     else {
       detail::unknown_choice("model", *model, "model", {"plane_strain", "plane_stress", "solid"});
     }
@@ -254,7 +268,8 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   require(scene.material.nu > -1 && scene.material.nu < 0.5, "material.nu", scene.material.nu, "must lie in (-1, 0.5)");
   // The largest entry of D, E(1 − ν)/((1 + ν)(1 − 2ν)), and the bulk modulus must be numbers.
   const double nu = scene.material.nu, stiffest = scene.material.E / ((1 + nu) * (1 - 2 * nu)) * std::max(1.0, 1 - nu);
-  require(std::isfinite(stiffest) && std::isfinite(scene.material.E / (3 * (1 - 2 * nu))), "material.E", scene.material.E,
+  require(std::isfinite(stiffest) && std::isfinite(scene.material.E / (3 * (1 - 2 * nu))), "material.E",
+          scene.material.E,
           "overflows double precision in the elasticity matrix with material.nu = " + detail::format_value(nu) +
               "; use other units");
   material.finish();
@@ -262,9 +277,12 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   scene.body = detail::read_body(root.object("body"), source, dim);
   // Plane stress has a finite bulk stiffness E/(2(1 − ν)) whatever ν: nothing locks, nothing to mix.
   if (scene.body.formulation == Formulation::Mixed && scene.model == ElasticModel::Solid)
-    throw InputError("body.formulation", "= \"mixed\": only for \"model\": \"plane_strain\" (6-node triangles; tetrahedra have no mixed formulation)");
+    throw InputError(
+        "body.formulation",
+        "= \"mixed\": only for \"model\": \"plane_strain\" (6-node triangles; tetrahedra have no mixed formulation)");
   if (scene.body.formulation == Formulation::Mixed && scene.model != PlaneModel::PlaneStrain)
-    throw InputError("body.formulation", "= \"mixed\": only for \"model\": \"plane_strain\" (plane stress does not lock as ν → 0.5)");
+    throw InputError("body.formulation",
+                     "= \"mixed\": only for \"model\": \"plane_strain\" (plane stress does not lock as ν → 0.5)");
   for (const auto& [item, path] : one_or_many(root.value("load"), "load"))
     scene.loads.push_back(detail::read_load(JsonObject(*item, path), scene.body, dim));
   for (const auto& [item, path] : one_or_many(root.value("obstacle"), "obstacle"))

@@ -11,8 +11,8 @@ namespace contactqp::detail {
 namespace {
 
 [[noreturn]] void broken(const std::string& what, const std::string& plane) {
-  throw InputError("body.symmetry", "= true: " + what + ", which is not mirror-symmetric about " + plane +
-                                        "; set \"symmetry\": false");
+  throw InputError("body.symmetry",
+                   "= true: " + what + ", which is not mirror-symmetric about " + plane + "; set \"symmetry\": false");
 }
 
 // A point on the mirror plane x_c = 0; a direction within it.
@@ -22,7 +22,9 @@ bool in_plane(const Eigen::Vector3d& direction, int c) { return std::abs(directi
 std::string mirror_rule(const ObstacleSpec& o, const std::string& axis) {
   if (o.is<PlaneObstacle>()) return ": its point must have " + axis + " = 0 and its normal no " + axis + " component)";
   if (o.is<ProfileObstacle>()) return ": its points must mirror each other end to end)";
-  if (o.is<CylinderObstacle>()) return ": its axis must lie in the plane " + axis + " = 0 or cross it at right angles through a point with " + axis + " = 0)";
+  if (o.is<CylinderObstacle>())
+    return ": its axis must lie in the plane " + axis + " = 0 or cross it at right angles through a point with " +
+           axis + " = 0)";
   if (o.is<PunchObstacle>()) return ": its center must have " + axis + " = 0 and its axis no " + axis + " component)";
   return ": its center must have " + axis + " = 0)";
 }
@@ -67,7 +69,8 @@ void check_symmetry(const Scene& scene) {
                    (dim == 2 ? "half" : "quarter") + " (give " + axis + " ≥ 0: the mirror image is implied)",
                plane);
       if (load.type == "point" && load.at && (*load.at)[c] == 0 && load.vector[c] != 0)
-        broken(load.path + " acts on " + axis + " = 0 with an " + axis + " component " + format_value(load.vector[c]), plane);
+        broken(load.path + " acts on " + axis + " = 0 with an " + axis + " component " + format_value(load.vector[c]),
+               plane);
     }
   }
 }

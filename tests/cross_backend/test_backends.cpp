@@ -40,8 +40,10 @@ KnownQp degenerate_qp(int n, int m, unsigned seed) {
   Eigen::VectorXd g = B * u;
   const int active = (2 * m) / 3;
   for (int i = 0; i < m; ++i) {
-    if (i < active / 2) lambda[i] = uniform(random);  // active and loaded
-    else if (i >= active) g[i] += uniform(random);    // inactive
+    if (i < active / 2)
+      lambda[i] = uniform(random);  // active and loaded
+    else if (i >= active)
+      g[i] += uniform(random);  // inactive
     // else: active with λ = 0, the degenerate case
   }
   const Eigen::VectorXd f = K * u + B.transpose() * lambda;
@@ -136,8 +138,8 @@ TEST_CASE("every backend solves degenerate QPs: rows active with λ = 0", "[cros
 TEST_CASE("every backend solves a QP without constraints", "[cross_backend]") {
   const Backend backend = GENERATE(from_range(available_backends()));
   CAPTURE(to_string(backend));
-  const QuadraticProgram qp = make_qp(Eigen::Matrix2d{{2, 1}, {1, 3}}, Eigen::Vector2d(1, 2), Eigen::MatrixXd(0, 2),
-                                      Eigen::VectorXd(0));
+  const QuadraticProgram qp =
+      make_qp(Eigen::Matrix2d{{2, 1}, {1, 3}}, Eigen::Vector2d(1, 2), Eigen::MatrixXd(0, 2), Eigen::VectorXd(0));
   const SolveResult r = solve(qp, options_for(backend, 1e-10));
   CAPTURE(r.message);
   REQUIRE(r.status == Status::Converged);

@@ -11,9 +11,9 @@ using namespace contactqp::testing;
 
 namespace {
 
-const char* const kRunFields[] = {"backend",  "status",          "iterations", "seconds", "objective",
-                                  "dual_objective", "duality_gap", "kkt_max",    "rel_diff_u", "rel_diff_lambda",
-                                  "half_width",     "max_pressure"};
+const char* const kRunFields[] = {"backend",    "status",          "iterations",  "seconds",
+                                  "objective",  "dual_objective",  "duality_gap", "kkt_max",
+                                  "rel_diff_u", "rel_diff_lambda", "half_width",  "max_pressure"};
 
 std::string all_backends_list() {
   std::string list;
@@ -75,8 +75,8 @@ TEST_CASE("compare with one backend chosen by name", "[cross_backend][cli]") {
   const Backend backend = GENERATE(from_range(available_backends()));
   TemporaryDirectory directory;
   const std::string out = directory.path("compare.json");
-  const CliRun run = run_cli("compare " + source_path("scenes/hertz.json") + " --backends " + to_string(backend) +
-                             " --json " + out);
+  const CliRun run =
+      run_cli("compare " + source_path("scenes/hertz.json") + " --backends " + to_string(backend) + " --json " + out);
   CAPTURE(run.out, run.err);
   CHECK(run.exit_status == 0);
   const nlohmann::json result = nlohmann::json::parse(read_text(out));

@@ -3,8 +3,8 @@
 // against CHOLMOD on shipped scenes; then what the PETSc solver promises on its own: the
 // certificate at tol, PETSc's divergence reason, unused options, bad options, the options of
 // one solve not leaking into the next, PETSC_OPTIONS, and start/finish of PETSc in the CLI.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cstdlib>
 
 #include "contactqp/certificate.hpp"
@@ -47,7 +47,8 @@ bool petsc_built_in() { return linear_solver_available(LinearSolverKind::Petsc);
 
 TEST_CASE("every backend with every solver of K solves random QPs to their enumerated solution",
           "[cross_backend][linear_solver]") {
-  const Backend backend = GENERATE(from_range(std::vector<Backend>(std::begin(kSolvingBackends), std::end(kSolvingBackends))));
+  const Backend backend =
+      GENERATE(from_range(std::vector<Backend>(std::begin(kSolvingBackends), std::end(kSolvingBackends))));
   const LinearSolverKind kind = GENERATE(from_range(available_linear_solvers()));
   const unsigned seed = GENERATE(range(200u, 203u));
   CAPTURE(to_string(backend), to_string(kind), seed);
@@ -62,7 +63,8 @@ TEST_CASE("every backend with every solver of K solves random QPs to their enume
 }
 
 TEST_CASE("each solver of K holds a spring against a wall", "[cross_backend][linear_solver]") {
-  const Backend backend = GENERATE(from_range(std::vector<Backend>(std::begin(kSolvingBackends), std::end(kSolvingBackends))));
+  const Backend backend =
+      GENERATE(from_range(std::vector<Backend>(std::begin(kSolvingBackends), std::end(kSolvingBackends))));
   const LinearSolverKind kind = GENERATE(from_range(available_linear_solvers()));
   CAPTURE(to_string(backend), to_string(kind));
   const double k = 3.0, F = 2.0, gap = 0.5;
@@ -80,9 +82,10 @@ TEST_CASE("with PETSc as the solver of K the backends give CHOLMOD's u on shippe
   // 4-node tetrahedra): 3D, GAMG with the six rigid-body modes.
   const std::string scene =
       GENERATE(as<std::string>{}, "scenes/hertz.json", "scenes/disc-in-vgroove.json", "scenes/hertz-sphere.json");
-  const char* patch = scene == "scenes/hertz.json"            ? "{}"
-                      : scene == "scenes/disc-in-vgroove.json" ? R"({"body": {"mesh": {"contact_size": 0.01}}})"
-                                                              : R"({"body": {"mesh": {"contact_size": 0.03, "order": 1}}})";
+  const char* patch = scene == "scenes/hertz.json" ? "{}"
+                      : scene == "scenes/disc-in-vgroove.json"
+                          ? R"({"body": {"mesh": {"contact_size": 0.01}}})"
+                          : R"({"body": {"mesh": {"contact_size": 0.03, "order": 1}}})";
   const QuadraticProgram qp = scene_qp(scene, patch);
   const double tol = 1e-10;
   for (Backend backend : kSolvingBackends) {
@@ -134,8 +137,8 @@ TEST_CASE("the PETSc solver of K: divergence, unused and bad options, no leaks b
   }
   SECTION("options reach PETSc unchanged: another Krylov method and preconditioner") {
     const SolveResult direct = solve(qp, options_with(Backend::ActiveSet, LinearSolverKind::Cholmod, 1e-10));
-    const SolveResult r =
-        solve(qp, options_with(Backend::ActiveSet, LinearSolverKind::Petsc, 1e-10, "-ksp_type gmres -pc_gamg_threshold 0.01"));
+    const SolveResult r = solve(qp, options_with(Backend::ActiveSet, LinearSolverKind::Petsc, 1e-10,
+                                                 "-ksp_type gmres -pc_gamg_threshold 0.01"));
     REQUIRE(r.status == Status::Converged);
     CHECK(r.K_factor->statistics().method.rfind("gmres + gamg", 0) == 0);
     CHECK(r.warnings.empty());  // -pc_gamg_threshold was read
@@ -144,9 +147,9 @@ TEST_CASE("the PETSc solver of K: divergence, unused and bad options, no leaks b
   SECTION("an unknown KSP type is bad input naming petsc_options") {
     CHECK_THROWS_AS(solve(qp, options_with(Backend::Uzawa, LinearSolverKind::Petsc, 1e-8, "-ksp_type nonsense")),
                     InputError);
-    CHECK_THROWS_WITH(solve(qp, options_with(Backend::Uzawa, LinearSolverKind::Petsc, 1e-8, "-ksp_type nonsense")),
-                      Catch::Matchers::StartsWith("petsc_options = \"-ksp_type nonsense\"") &&
-                          Catch::Matchers::Contains("nonsense"));
+    CHECK_THROWS_WITH(
+        solve(qp, options_with(Backend::Uzawa, LinearSolverKind::Petsc, 1e-8, "-ksp_type nonsense")),
+        Catch::Matchers::StartsWith("petsc_options = \"-ksp_type nonsense\"") && Catch::Matchers::Contains("nonsense"));
   }
 }
 
@@ -160,7 +163,8 @@ TEST_CASE("the CLI passes PETSc options through, reads PETSC_OPTIONS, and ends P
     return;
   }
   // -log_view is printed by PetscFinalize: it ran, at exit.
-  const CliRun logged = run_cli("solve " + scene + " --backend active_set --linear-solver petsc --petsc-options=-log_view");
+  const CliRun logged =
+      run_cli("solve " + scene + " --backend active_set --linear-solver petsc --petsc-options=-log_view");
   CHECK(logged.exit_status == 0);
   CHECK_THAT(logged.out, Catch::Matchers::Contains("KSPSolve"));
   // The environment variable, as PETSc users expect (set for the child process only: this
@@ -180,8 +184,9 @@ TEST_CASE("the CLI passes PETSc options through, reads PETSC_OPTIONS, and ends P
   CHECK(swallowed.exit_status == 2);
   CHECK_THAT(swallowed.err, Catch::Matchers::Contains("--petsc-options = \"--verbose\""));
   // compare takes the options too, and reports an unused option once.
-  const CliRun compare = run_cli("compare " + scene +
-                                 " --backends uzawa_accel,active_set --linear-solver petsc --petsc-options=\"-no_such_thing 1\"");
+  const CliRun compare =
+      run_cli("compare " + scene +
+              " --backends uzawa_accel,active_set --linear-solver petsc --petsc-options=\"-no_such_thing 1\"");
   CHECK(compare.exit_status == 0);
   const std::string warning = "PETSc option -no_such_thing 1 was not used";
   CHECK(compare.err.find(warning) != std::string::npos);

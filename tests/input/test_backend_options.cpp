@@ -39,7 +39,8 @@ TEST_CASE("Ipopt options: unknown keys and bad values are input errors naming th
   for (const Case& c : cases) {
     CAPTURE(c.key, c.value);
     CHECK_THROWS_AS(solve(qp, with_option(Backend::Ipopt, c.key, c.value)), InputError);
-    CHECK_THROWS_WITH(validate_options(with_option(Backend::Ipopt, c.key, c.value)), Catch::Matchers::Contains(c.names));
+    CHECK_THROWS_WITH(validate_options(with_option(Backend::Ipopt, c.key, c.value)),
+                      Catch::Matchers::Contains(c.names));
   }
 }
 
@@ -122,7 +123,8 @@ TEST_CASE("Uzawa takes no backend options, but lets others' pass", "[input][uzaw
 
 TEST_CASE("a scene's solver.options are backend options", "[input][scene]") {
   const Scene scene = parse_scene(patched_scene(
-      "scenes/hertz.json", R"({"solver": {"backend": "ipopt", "options": {"max_iter": 50, "mu_strategy": "monotone", "tol": 1e-9}}})"));
+      "scenes/hertz.json",
+      R"({"solver": {"backend": "ipopt", "options": {"max_iter": 50, "mu_strategy": "monotone", "tol": 1e-9}}})"));
   CHECK(scene.solver.backend == Backend::Ipopt);
   CHECK(scene.solver.backend_options.at("max_iter") == "50");
   CHECK(scene.solver.backend_options.at("mu_strategy") == "monotone");

@@ -20,8 +20,8 @@ using namespace contactqp::testing;
 namespace {
 
 struct BadScene {
-  std::string text;    // a whole scene
-  std::string names;   // what the one-line message must contain
+  std::string text;   // a whole scene
+  std::string names;  // what the one-line message must contain
 };
 
 std::vector<BadScene> bad_scenes() {
@@ -70,22 +70,38 @@ std::vector<BadScene> bad_scenes() {
       {patch(R"({"body": {"shape": "rectangle", "width": 0, "height": 1}})"), "body.width = 0"},
       {patch(R"({"body": {"shape": "rectangle", "width": 1}})"), "body.height"},
       {patch(R"({"body": {"shape": "rectangel"}})"), "did you mean \"rectangle\""},
-      {patch(R"({"body": {"shape": "rectangle", "width": 4, "height": 2, "radius": null}, "load": {"boundary": "arc"}})"), "load.boundary = \"arc\": not a boundary of a rectangle"},
+      {patch(
+           R"({"body": {"shape": "rectangle", "width": 4, "height": 2, "radius": null}, "load": {"boundary": "arc"}})"),
+       "load.boundary = \"arc\": not a boundary of a rectangle"},
       {patch(R"({"load": {"type": "pressure"}})"), "load.value"},
       {patch(R"({"load": {"type": "traction", "value": 3}})"), "load.value"},
-      {patch(R"({"load": {"type": "gravity", "density": -1, "g": [0, -1], "boundary": null, "value": null}})"), "load.density = -1"},
+      {patch(R"({"load": {"type": "gravity", "density": -1, "g": [0, -1], "boundary": null, "value": null}})"),
+       "load.density = -1"},
       {patch(R"({"load": {"type": "point", "boundary": null, "value": [0, 1]}})"), "load"},
       {patch(R"({"load": {"type": "point", "boundary": null, "value": [0, 1], "point": "tip"}})"), "load.point"},
-      {patch(R"({"load": {"type": "gravity", "density": 1, "g": [0, -1], "boundary": null, "value": null, "region": "body"}})"), "load.region"},
+      {patch(
+           R"({"load": {"type": "gravity", "density": 1, "g": [0, -1], "boundary": null, "value": null, "region": "body"}})"),
+       "load.region"},
       {patch(R"({"load": {"type": "pressure", "value": 1, "at": [0, 0]}})"), "load.at"},
-      {patch(R"({"obstacle": {"type": "circle", "center": [0, -1], "radius": 0, "point": null, "normal": null}})"), "obstacle.radius = 0"},
-      {patch(R"({"obstacle": {"type": "circle", "center": [0, -1], "point": null, "normal": null}})"), "obstacle.radius"},
-      {patch(R"({"obstacle": {"type": "profile", "points": [[0, 0]], "body_side": "left", "point": null, "normal": null}})"), "obstacle.points"},
-      {patch(R"({"obstacle": {"type": "profile", "points": [[-1, 0], [-1, 0], [1, 0]], "body_side": "left", "point": null, "normal": null}})"), "obstacle.points[1]"},
-      {patch(R"({"obstacle": {"type": "profile", "points": [[-1, 0], [1, 1], [1, -1], [-1, 1]], "body_side": "left", "point": null, "normal": null}})"), "crosses itself"},
-      {patch(R"({"obstacle": {"type": "profile", "points": [[-1, 0], [1, 0]], "body_side": "up", "point": null, "normal": null}})"), "obstacle.body_side"},
+      {patch(R"({"obstacle": {"type": "circle", "center": [0, -1], "radius": 0, "point": null, "normal": null}})"),
+       "obstacle.radius = 0"},
+      {patch(R"({"obstacle": {"type": "circle", "center": [0, -1], "point": null, "normal": null}})"),
+       "obstacle.radius"},
+      {patch(
+           R"({"obstacle": {"type": "profile", "points": [[0, 0]], "body_side": "left", "point": null, "normal": null}})"),
+       "obstacle.points"},
+      {patch(
+           R"({"obstacle": {"type": "profile", "points": [[-1, 0], [-1, 0], [1, 0]], "body_side": "left", "point": null, "normal": null}})"),
+       "obstacle.points[1]"},
+      {patch(
+           R"({"obstacle": {"type": "profile", "points": [[-1, 0], [1, 1], [1, -1], [-1, 1]], "body_side": "left", "point": null, "normal": null}})"),
+       "crosses itself"},
+      {patch(
+           R"({"obstacle": {"type": "profile", "points": [[-1, 0], [1, 0]], "body_side": "up", "point": null, "normal": null}})"),
+       "obstacle.body_side"},
       {patch(R"({"obstacle": {"type": "cirlce"}})"), "did you mean \"circle\""},
-      {patch(R"({"obstacle": {"type": "circle", "center": [0.5, -1], "radius": 1, "point": null, "normal": null}})"), "body.symmetry"},
+      {patch(R"({"obstacle": {"type": "circle", "center": [0.5, -1], "radius": 1, "point": null, "normal": null}})"),
+       "body.symmetry"},
       {patch(R"({"load": {"type": "traction", "value": [0.1, -1]}})"), "body.symmetry"},
       {patch(R"({"transform": {"rotate_degrees": "thirty"}})"), "transform.rotate_degrees"},
       {patch(R"({"transform": {"rotate": 30}})"), "transform.rotate"},
@@ -94,7 +110,8 @@ std::vector<BadScene> bad_scenes() {
       {"{\"material\": {\"E\": 1e999, \"nu\": 0.3}}", "is not valid JSON: number overflow"},
       {"{\"material\": {\"E\": 1, \"nu\": 0.3},}", "is not valid JSON"},
       {"", "is not valid JSON"},
-      {patch(R"({"body": {"formulation": "mixd"}})"), "body.formulation = \"mixd\": unknown formulation; valid: displacement, mixed; did you mean \"mixed\"?"},
+      {patch(R"({"body": {"formulation": "mixd"}})"),
+       "body.formulation = \"mixd\": unknown formulation; valid: displacement, mixed; did you mean \"mixed\"?"},
       {patch(R"({"body": {"formulaton": "mixed"}})"), "did you mean \"body.formulation\""},
       {patch(R"({"body": {"formulation": "mixed", "mesh": {"order": 1}}})"), "body.mesh.order = 1"},
       {patch(R"({"model": "plane_stress", "body": {"formulation": "mixed"}})"), "body.formulation = \"mixed\""},
@@ -107,8 +124,10 @@ std::vector<BadScene> bad_scenes() {
       {patch(R"({"material": {"nu": -1.5}})"), "material.nu = -1.5"},
       {patch(R"({"body": {"radius": true}})"), "body.radius = true: must be a number"},
       {patch(R"({"body": {"mesh": {"size": -0.1}}})"), "body.mesh.size = -0.1"},
-      {patch(R"({"body": {"mesh": {"contact_size": 0.2}}})"), "body.mesh.contact_size = 0.2: must not exceed body.mesh.size = 0.1"},
-      {patch(R"({"body": {"radius": 0.05, "mesh": {"size": 0.1, "contact_size": 0.08}}})"), "must not exceed the body's radius = 0.05"},
+      {patch(R"({"body": {"mesh": {"contact_size": 0.2}}})"),
+       "body.mesh.contact_size = 0.2: must not exceed body.mesh.size = 0.1"},
+      {patch(R"({"body": {"radius": 0.05, "mesh": {"size": 0.1, "contact_size": 0.08}}})"),
+       "must not exceed the body's radius = 0.05"},
       {patch(R"({"body": {"mesh": {"size_factor": 2}}})"), "body.mesh.size_factor is not a valid key"},
       {patch(R"({"body": {"mesh": "fine"}})"), "body.mesh = \"fine\": must be an object"},
       {patch(R"({"load": []})"), "load = []"},
@@ -145,7 +164,8 @@ TEST_CASE("names a mesh body does not have are errors naming the field, with a h
   const Case cases[] = {
       {R"("load": {"type": "displacement", "boundary": "topp", "value": [0, -0.01]}, "contact": {"boundary": "arc"}})",
        "load.boundary = \"topp\": not a physical curve of " + disc + "; valid: arc, top; did you mean \"top\"?"},
-      {R"("load": {"type": "displacement", "boundary": "top", "value": [0, -0.01]}, "contact": {"boundary": "rim"}})", "contact.boundary"},
+      {R"("load": {"type": "displacement", "boundary": "top", "value": [0, -0.01]}, "contact": {"boundary": "rim"}})",
+       "contact.boundary"},
       {R"("load": [{"type": "displacement", "boundary": "top", "value": [0, -0.01]}, {"type": "gravity", "density": 1, "g": [0, -1], "region": "bdy"}], "contact": {"boundary": "arc"}})",
        "load[1].region = \"bdy\""},
       {R"("load": [{"type": "displacement", "boundary": "top", "value": [0, -0.01]}, {"type": "point", "point": "tip", "value": [0, -1]}], "contact": {"boundary": "arc"}})",
@@ -156,9 +176,12 @@ TEST_CASE("names a mesh body does not have are errors naming the field, with a h
     CAPTURE(c.rest);
     CHECK_THROWS_WITH(build_model(parse_scene(base + c.rest)), Catch::Matchers::Contains(c.names));
   }
-  nlohmann::json symmetric = nlohmann::json::parse(base + R"("load": {"type": "displacement", "boundary": "top", "value": [null, -0.01]}, "contact": {"boundary": "arc"}})");
+  nlohmann::json symmetric = nlohmann::json::parse(
+      base +
+      R"("load": {"type": "displacement", "boundary": "top", "value": [null, -0.01]}, "contact": {"boundary": "arc"}})");
   symmetric["body"]["symmetry"] = true;
-  CHECK_THROWS_WITH(build_model(parse_scene(symmetric.dump())), Catch::Matchers::Contains("no physical curve named \"symmetry\""));
+  CHECK_THROWS_WITH(build_model(parse_scene(symmetric.dump())),
+                    Catch::Matchers::Contains("no physical curve named \"symmetry\""));
 }
 
 TEST_CASE("misspelled keys come with the nearest valid one", "[input]") {
@@ -206,7 +229,8 @@ TEST_CASE("the CLI rejects missing files, bad options and unwritable outputs", "
       {"solve " + scene + " --backend-option nonsense", "--backend-option"},
       {"solve " + scene + " --backend ipopt --backend-option print_lvl=5 --json " + out, "print_lvl"},
       {"solve " + scene + " --backend nlopt --backend-option algorithm=LD_FAST --json " + out, "LD_LBFGS"},
-      {"compare " + scene + " --backends uzawa,ipot --json " + out, "--backends = \"ipot\": unknown backend; valid: uzawa"},
+      {"compare " + scene + " --backends uzawa,ipot --json " + out,
+       "--backends = \"ipot\": unknown backend; valid: uzawa"},
       {"compare " + scene + " --backends uzawa,uzawa --json " + out, "listed twice"},
       {"compare " + scene + " --backends , --json " + out, "--backends"},
       {"compare " + scene + " --tol 0 --json " + out, "--tol"},
@@ -265,7 +289,9 @@ TEST_CASE("every kind of bad input, with every output option: exit 2, one line n
   };
   // Gmsh files: a good one from the gmsh program, and broken ones.
   const std::string good = directory.path("good.msh");
-  REQUIRE(std::system(("gmsh " + source_path("scenes/hertz_disc.geo") + " -2 -format msh22 -o " + good + " >/dev/null 2>&1").c_str()) == 0);
+  REQUIRE(
+      std::system(("gmsh " + source_path("scenes/hertz_disc.geo") + " -2 -format msh22 -o " + good + " >/dev/null 2>&1")
+                      .c_str()) == 0);
   const std::string good_text = read_text(good);
   write("garbage.msh", "garbage, not a mesh\n");
   write("truncated.msh", good_text.substr(0, good_text.size() / 3));
@@ -274,8 +300,9 @@ TEST_CASE("every kind of bad input, with every output option: exit 2, one line n
   std::string version = good_text;
   version.replace(version.find("2.2 0 8"), 7, "9.9 0 8");
   write("version.msh", version);
-  write("nan.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 nan 0 0\n3 0 1 0\n$EndNodes\n"
-                   "$Elements\n1\n1 2 2 1 1 1 2 3\n$EndElements\n");
+  write("nan.msh",
+        "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 nan 0 0\n3 0 1 0\n$EndNodes\n"
+        "$Elements\n1\n1 2 2 1 1 1 2 3\n$EndElements\n");
   write("syntax.geo", "Point(1) = {0, 0, 0\n");
   std::filesystem::create_directory(directory.path("folder.msh"));
 
@@ -285,7 +312,8 @@ TEST_CASE("every kind of bad input, with every output option: exit 2, one line n
     return write("scene-" + std::to_string(std::hash<std::string>()(file + extra)) + ".json", scene.dump());
   };
   auto scene = [&](const std::string& patch) {
-    return write("scene-" + std::to_string(std::hash<std::string>()(patch)) + ".json", patched_scene("scenes/hertz.json", patch));
+    return write("scene-" + std::to_string(std::hash<std::string>()(patch)) + ".json",
+                 patched_scene("scenes/hertz.json", patch));
   };
   const std::string hertz = scene("{}");
 
@@ -308,20 +336,24 @@ TEST_CASE("every kind of bad input, with every output option: exit 2, one line n
       {scene(R"({"material": {"nu": 0.5}})"), "material.nu = 0.5: must lie in (-1, 0.5)"},
       {scene(R"({"body": {"radius": -2}})"), "body.radius = -2: must be positive"},
       {scene(R"({"body": {"mesh": {"size": 0}}})"), "body.mesh.size = 0: must be positive"},
-      {scene(R"({"body": {"mesh": {"contact_size": 0.5}}})"), "body.mesh.contact_size = 0.5: must not exceed body.mesh.size"},
+      {scene(R"({"body": {"mesh": {"contact_size": 0.5}}})"),
+       "body.mesh.contact_size = 0.5: must not exceed body.mesh.size"},
       {scene(R"({"material": {"E": 1e308}})"), "material.E = 1e+308"},
       {scene(R"({"material": {"E": 1e10}, "load": {"value": [null, -1e300]}, "obstacle": {"point": [0, -1e301]}})"),
        "load gives a load vector that overflows"},
       {scene(R"({"body": {"symmetry": false}})"), "load leaves the body free to move rigidly (translation in x)"},
       {scene(R"({"material": {"E": 1e-320}})"), "the stiffness matrix underflows double precision"},
       {scene(R"({"load": {"value": [null, -1e-300]}})"), "load gives a load vector that underflows"},
-      {scene(R"({"body": {"thickness": 1e308}})"), "material.E = 1 (body.thickness = 1e+308): the stiffness matrix overflows"},
-      {write("deep.json", std::string(100000, '[') + std::string(100000, ']')), "deep.json is not a scene: arrays and objects nested deeper than 64"},
+      {scene(R"({"body": {"thickness": 1e308}})"),
+       "material.E = 1 (body.thickness = 1e+308): the stiffness matrix overflows"},
+      {write("deep.json", std::string(100000, '[') + std::string(100000, ']')),
+       "deep.json is not a scene: arrays and objects nested deeper than 64"},
       // Sizes the element estimate once let through to Gmsh, which then took all the memory: a
       // contact size far below the grading's first band (estimated at 1e5 triangles, not 5e9),
       // and sizes whose square underflows (the estimate was 0/0).
       {scene(R"({"body": {"mesh": {"contact_size": 1e-9}}})"), "body.mesh would have about"},
-      {scene(R"({"body": {"mesh": {"size": 1e-300, "contact_size": 1e-300}}})"), "body.mesh would have unboundedly many triangles"},
+      {scene(R"({"body": {"mesh": {"size": 1e-300, "contact_size": 1e-300}}})"),
+       "body.mesh would have unboundedly many triangles"},
       // An element limit, for a generated mesh and for a file.
       {hertz + " --max-elements 1000", "body.mesh would have about"},
       {mesh_scene("good.msh") + " --max-elements 100", "more than the limit of 100; raise --max-elements"},
@@ -335,14 +367,17 @@ TEST_CASE("every kind of bad input, with every output option: exit 2, one line n
       {mesh_scene("version.msh"), "version.msh could not be read by Gmsh"},
       {mesh_scene("nan.msh"), "nan.msh cannot be used: element 1 is degenerate"},
       {mesh_scene("syntax.geo"), "syntax.geo could not be meshed by Gmsh"},
-      {mesh_scene("good.msh", R"({"contact": {"boundary": "rim"}})"), "contact.boundary = \"rim\": not a physical curve of"},
+      {mesh_scene("good.msh", R"({"contact": {"boundary": "rim"}})"),
+       "contact.boundary = \"rim\": not a physical curve of"},
       {mesh_scene("good.msh", R"({"load": {"boundary": "topp"}})"), "did you mean \"top\"?"},
-      {mesh_scene("good.msh", R"({"body": {"formulation": "mixed"}})"), "body.formulation = \"mixed\": needs 6-node triangles"},
+      {mesh_scene("good.msh", R"({"body": {"formulation": "mixed"}})"),
+       "body.formulation = \"mixed\": needs 6-node triangles"},
       // Outputs: a missing directory, a directory, the scene file, the same file twice.
       {hertz, "--json = " + directory.path("no/such/out.json") + ": directory", directory.path("no/such/out.json")},
       {hertz, "--csv = " + directory.path("no/such/p.csv") + ": directory", "", directory.path("no/such/p.csv")},
       {hertz, "--vtu = " + directory.path("no/such/o.vtu") + ": directory", "", "", directory.path("no/such/o.vtu")},
-      {hertz, "--json = " + directory.path("folder.msh") + ": is a directory, not a file", directory.path("folder.msh")},
+      {hertz, "--json = " + directory.path("folder.msh") + ": is a directory, not a file",
+       directory.path("folder.msh")},
       {hertz, "--json = " + hertz + ": is the scene file", hertz},
       {hertz, "--csv = " + json_out + ": the same file as --json", "", json_out},
   };

@@ -78,21 +78,39 @@ std::vector<BadScene> bad_scenes(const std::string& inverted_msh, const std::str
       {patch(R"({"obstacle": {"point": [0, 0, 0, 1]}})"), "obstacle.point"},
       {patch(R"({"model": "plane_strain"})"), "body.shape = \"hemisphere\": a 3D shape"},
       {patch(R"({"body": {"shape": "half_disc"}})"), "body.shape = \"half_disc\": a 2D shape"},
-      {patch(R"({"obstacle": {"type": "circle", "center": [0, 0, -1], "radius": 1, "point": null, "normal": null}})"), "obstacle.type = \"circle\": a 2D obstacle"},
-      {patch(R"({"obstacle": {"type": "punch", "center": [0, 0, 0], "axis": [0, 0, 1], "radius": 0, "point": null, "normal": null}})"), "obstacle.radius = 0"},
-      {patch(R"({"obstacle": {"type": "punch", "center": [0, 0, 0], "axis": [0, 0, 1], "radius": -2, "point": null, "normal": null}})"), "obstacle.radius = -2"},
-      {patch(R"({"obstacle": {"type": "punch", "center": [0, 0, 0], "axis": [0, 0, 0], "radius": 1, "point": null, "normal": null}})"), "obstacle.axis"},
-      {patch(R"({"obstacle": {"type": "cylinder", "point": [0, 0, -1], "axis": [1, 0, 0], "point": null, "normal": null}})"), "obstacle"},
-      {patch(R"({"obstacle": {"type": "sphere", "center": [0.3, 0, -1], "radius": 1, "point": null, "normal": null}})"), "body.symmetry"},
+      {patch(R"({"obstacle": {"type": "circle", "center": [0, 0, -1], "radius": 1, "point": null, "normal": null}})"),
+       "obstacle.type = \"circle\": a 2D obstacle"},
+      {patch(
+           R"({"obstacle": {"type": "punch", "center": [0, 0, 0], "axis": [0, 0, 1], "radius": 0, "point": null, "normal": null}})"),
+       "obstacle.radius = 0"},
+      {patch(
+           R"({"obstacle": {"type": "punch", "center": [0, 0, 0], "axis": [0, 0, 1], "radius": -2, "point": null, "normal": null}})"),
+       "obstacle.radius = -2"},
+      {patch(
+           R"({"obstacle": {"type": "punch", "center": [0, 0, 0], "axis": [0, 0, 0], "radius": 1, "point": null, "normal": null}})"),
+       "obstacle.axis"},
+      {patch(
+           R"({"obstacle": {"type": "cylinder", "point": [0, 0, -1], "axis": [1, 0, 0], "point": null, "normal": null}})"),
+       "obstacle"},
+      {patch(R"({"obstacle": {"type": "sphere", "center": [0.3, 0, -1], "radius": 1, "point": null, "normal": null}})"),
+       "body.symmetry"},
       {patch(R"({"transform": {"rotate_degrees": 30}})"), "transform.axis"},
       {patch(R"({"transform": {"rotate_degrees": 30, "axis": [0, 0, 0]}})"), "transform.axis"},
       {patch(R"({"transform": {"rotate_degrees": 30, "axis": [1, 0]}})"), "transform.axis"},
       {patch(R"({"body": {"thickness": 2}})"), "body.thickness"},
-      {patch(R"({"body": {"shape": "box", "width": 1, "height": 1, "radius": null}, "load": {"boundary": "top"}})"), "body.depth"},
+      {patch(R"({"body": {"shape": "box", "width": 1, "height": 1, "radius": null}, "load": {"boundary": "top"}})"),
+       "body.depth"},
       {patch(R"({"body": {"formulation": "mixed"}})"), "body.formulation"},
       {patch(R"({"load": {"boundary": "arc"}})"), "load.boundary = \"arc\": not a boundary of a hemisphere"},
-      {patch(R"({"body": {"shape": "mesh", "file": ")" + inverted_msh + R"(", "radius": null, "mesh": null, "symmetry": false}, "contact": {"boundary": "surface"}, "load": {"boundary": "surface"}})"), "inverted"},
-      {patched_scene("scenes/hertz.json", R"({"body": {"shape": "mesh", "file": ")" + tet_msh + R"(", "radius": null, "mesh": null, "symmetry": false}, "contact": {"boundary": "surface"}, "load": {"boundary": "surface"}})"), "3D mesh"},
+      {patch(
+           R"({"body": {"shape": "mesh", "file": ")" + inverted_msh +
+           R"(", "radius": null, "mesh": null, "symmetry": false}, "contact": {"boundary": "surface"}, "load": {"boundary": "surface"}})"),
+       "inverted"},
+      {patched_scene(
+           "scenes/hertz.json",
+           R"({"body": {"shape": "mesh", "file": ")" + tet_msh +
+               R"(", "radius": null, "mesh": null, "symmetry": false}, "contact": {"boundary": "surface"}, "load": {"boundary": "surface"}})"),
+       "3D mesh"},
   };
 }
 
@@ -132,7 +150,8 @@ TEST_CASE("an unknown key that misspells a missing one is named before the missi
   const std::string text = R"({"materail": {"E": 1, "nu": 0.3}, "body": {"shape": "half_disc", "radius": 1,
       "mesh": {"size": 0.1, "contact_size": 0.01}}, "load": {"type": "displacement", "boundary": "top",
       "value": [null, -0.01]}, "obstacle": {"type": "plane", "point": [0, 0], "normal": [0, 1]}})";
-  CHECK_THROWS_WITH(parse_scene(text), Catch::Matchers::Contains("materail") && Catch::Matchers::Contains("did you mean \"material\""));
+  CHECK_THROWS_WITH(parse_scene(text),
+                    Catch::Matchers::Contains("materail") && Catch::Matchers::Contains("did you mean \"material\""));
   // A key that is simply missing is still said to be missing.
   CHECK_THROWS_WITH(parse_scene(R"({"material": {"E": 1}})"), Catch::Matchers::Contains("material.nu is missing"));
 }

@@ -59,7 +59,8 @@ ExactSolution solve_by_enumeration(const QuadraticProgram& qp) {
     for (int k = 0; k < a; ++k) candidate.lambda[active[k]] = z[n + k];
     const double scale = 1e-10 * (1 + qp.g.cwiseAbs().maxCoeff() + candidate.u.cwiseAbs().maxCoeff());
     if ((B * candidate.u - qp.g).maxCoeff() > scale) continue;
-    if (candidate.lambda.size() && candidate.lambda.minCoeff() < -1e-10 * (1 + candidate.lambda.cwiseAbs().maxCoeff())) continue;
+    if (candidate.lambda.size() && candidate.lambda.minCoeff() < -1e-10 * (1 + candidate.lambda.cwiseAbs().maxCoeff()))
+      continue;
     const double objective = 0.5 * candidate.u.dot(K * candidate.u) - qp.f.dot(candidate.u);
     if (!best || objective < best_objective) {
       best = candidate;

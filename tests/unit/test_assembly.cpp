@@ -12,7 +12,8 @@ using namespace contactqp::testing;
 namespace {
 
 Scene small_scene(int order, bool symmetry) {
-  Scene scene = parse_scene(patched_scene("scenes/hertz.json", R"({"body": {"mesh": {"size": 0.2, "contact_size": 0.02}}})"));
+  Scene scene =
+      parse_scene(patched_scene("scenes/hertz.json", R"({"body": {"mesh": {"size": 0.2, "contact_size": 0.02}}})"));
   scene.body.mesh.order = order;
   scene.body.symmetry = symmetry;
   if (!symmetry) scene.loads[0].value[0] = 0.0;  // the full disc needs u_x held somewhere

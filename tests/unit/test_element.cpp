@@ -22,7 +22,8 @@ std::vector<Eigen::Vector2d> triangle(int order) {
 }
 
 // Nodal values of a displacement field u(x) = a + A x.
-Eigen::VectorXd linear_field(const std::vector<Eigen::Vector2d>& x, const Eigen::Vector2d& a, const Eigen::Matrix2d& A) {
+Eigen::VectorXd linear_field(const std::vector<Eigen::Vector2d>& x, const Eigen::Vector2d& a,
+                             const Eigen::Matrix2d& A) {
   Eigen::VectorXd u(2 * x.size());
   for (size_t i = 0; i < x.size(); ++i) u.segment<2>(2 * i) = a + A * x[i];
   return u;
@@ -42,8 +43,7 @@ TEST_CASE("rigid-body modes give zero energy and K_e has exactly three of them",
   Eigen::Matrix2d rotation;
   rotation << 0, -1, 1, 0;
   const Eigen::VectorXd modes[] = {linear_field(x, {1, 0}, Eigen::Matrix2d::Zero()),
-                                   linear_field(x, {0, 1}, Eigen::Matrix2d::Zero()),
-                                   linear_field(x, {0, 0}, rotation)};
+                                   linear_field(x, {0, 1}, Eigen::Matrix2d::Zero()), linear_field(x, {0, 0}, rotation)};
   for (const Eigen::VectorXd& r : modes) CHECK((Ke * r).norm() <= 1e-10 * Ke.norm() * r.norm());
 
   const Eigen::VectorXd eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Ke).eigenvalues();
@@ -108,8 +108,8 @@ TEST_CASE("mixed: rigid modes are free, constant strain gives the exact energy",
   CHECK((Ke - Ke.transpose()).norm() <= 1e-12 * Ke.norm());
   Eigen::Matrix2d rotation;
   rotation << 0, -1, 1, 0;
-  for (const Eigen::VectorXd& r : {linear_field(x, {1, 0}, Eigen::Matrix2d::Zero()), linear_field(x, {0, 1}, Eigen::Matrix2d::Zero()),
-                                   linear_field(x, {0, 0}, rotation)})
+  for (const Eigen::VectorXd& r : {linear_field(x, {1, 0}, Eigen::Matrix2d::Zero()),
+                                   linear_field(x, {0, 1}, Eigen::Matrix2d::Zero()), linear_field(x, {0, 0}, rotation)})
     CHECK((Ke * r).norm() <= 1e-10 * Ke.norm() * r.norm());
   const Eigen::VectorXd eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Ke).eigenvalues();
   int zero = 0;
@@ -148,8 +148,10 @@ TEST_CASE("mixed: a deformation of zero mean dilatation costs the same whatever 
   for (double nu : {0.3, 0.49, 0.4999, 0.499999}) {
     CAPTURE(nu);
     const Material material{2 * (1 + nu), nu};  // μ = 1 throughout
-    const double mixed = u.dot(element_stiffness(x.data(), 2, element_law(PlaneModel::PlaneStrain, material, Formulation::Mixed), 1.0) * u);
-    const double displacement = u.dot(element_stiffness(x.data(), 2, elasticity_matrix(PlaneModel::PlaneStrain, material), 1.0) * u);
+    const double mixed = u.dot(
+        element_stiffness(x.data(), 2, element_law(PlaneModel::PlaneStrain, material, Formulation::Mixed), 1.0) * u);
+    const double displacement =
+        u.dot(element_stiffness(x.data(), 2, elasticity_matrix(PlaneModel::PlaneStrain, material), 1.0) * u);
     if (mixed_first < 0) {
       mixed_first = mixed;
       displacement_first = displacement;

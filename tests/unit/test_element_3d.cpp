@@ -26,15 +26,20 @@ std::vector<Eigen::Vector3d> tetrahedron(int order) {
 }
 
 // Nodal values of u(x) = a + A x.
-Eigen::VectorXd linear_field(const std::vector<Eigen::Vector3d>& x, const Eigen::Vector3d& a, const Eigen::Matrix3d& A) {
+Eigen::VectorXd linear_field(const std::vector<Eigen::Vector3d>& x, const Eigen::Vector3d& a,
+                             const Eigen::Matrix3d& A) {
   Eigen::VectorXd u(3 * x.size());
   for (size_t i = 0; i < x.size(); ++i) u.segment<3>(3 * i) = a + A * x[i];
   return u;
 }
 
-double volume(const std::vector<Eigen::Vector3d>& x) { return (x[1] - x[0]).dot((x[2] - x[0]).cross(x[3] - x[0])) / 6.0; }
+double volume(const std::vector<Eigen::Vector3d>& x) {
+  return (x[1] - x[0]).dot((x[2] - x[0]).cross(x[3] - x[0])) / 6.0;
+}
 
-ElementLaw solid_law(double E, double nu) { return element_law(ElasticModel::Solid, {E, nu}, Formulation::Displacement); }
+ElementLaw solid_law(double E, double nu) {
+  return element_law(ElasticModel::Solid, {E, nu}, Formulation::Displacement);
+}
 
 }  // namespace
 
@@ -79,7 +84,8 @@ TEST_CASE("tetrahedra: a constant strain gives the exact strain energy", "[unit]
   const Eigen::MatrixXd Ke = element_stiffness(element_type(3, order), x.data(), solid_law(E, nu), 1.0);
   Eigen::Matrix3d A;
   A << 1e-3, 2e-3, -1e-3, 5e-4, -2e-3, 3e-4, -7e-4, 1e-4, 4e-3;
-  const Eigen::VectorXd u = linear_field(x, Eigen::Vector3d(1e-3, -2e-3, 3e-3), A);  // a rigid part of the size of the strains
+  const Eigen::VectorXd u =
+      linear_field(x, Eigen::Vector3d(1e-3, -2e-3, 3e-3), A);  // a rigid part of the size of the strains
   const Eigen::Matrix3d eps = 0.5 * (A + A.transpose());
   const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
   const Eigen::Matrix3d sigma = lambda * eps.trace() * Eigen::Matrix3d::Identity() + 2 * mu * eps;
@@ -112,7 +118,8 @@ TEST_CASE("tetrahedra: the shape functions interpolate and sum to one", "[unit][
     plus[c] += h;
     minus[c] -= h;
     const Eigen::VectorXd fd = (detail::tetrahedron_values(order, plus[0], plus[1], plus[2]) -
-                                detail::tetrahedron_values(order, minus[0], minus[1], minus[2])) / (2 * h);
+                                detail::tetrahedron_values(order, minus[0], minus[1], minus[2])) /
+                               (2 * h);
     CHECK((fd.transpose() - dN.row(c)).norm() < 1e-8);
     CHECK(dN.row(c).sum() == Approx(0.0).margin(1e-13));
   }

@@ -17,10 +17,11 @@ using detail::read_gmsh_file;
 namespace {
 
 // Runs the gmsh program (Debian's gmsh package) on a .geo of the repository.
-std::string gmsh_file(const TemporaryDirectory& directory, const std::string& geo, const std::string& format, int order) {
+std::string gmsh_file(const TemporaryDirectory& directory, const std::string& geo, const std::string& format,
+                      int order) {
   const std::string out = directory.path(format + "-" + std::to_string(order) + ".msh");
-  const std::string command = "gmsh " + source_path(geo) + " -2 -order " + std::to_string(order) + " -format " + format +
-                              " -o " + out + " >/dev/null 2>&1";
+  const std::string command = "gmsh " + source_path(geo) + " -2 -order " + std::to_string(order) + " -format " +
+                              format + " -o " + out + " >/dev/null 2>&1";
   REQUIRE(std::system(command.c_str()) == 0);
   return out;
 }
@@ -30,7 +31,8 @@ std::string gmsh_file(const TemporaryDirectory& directory, const std::string& ge
 std::string square_msh22(const std::string& second_triangle, const std::string& extra_nodes = "",
                          const std::string& extra_elements = "", int n_extra_nodes = 0, int n_extra_elements = 0) {
   return "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n1 1 \"bottom\"\n2 2 \"body\"\n$EndPhysicalNames\n"
-         "$Nodes\n" + std::to_string(4 + n_extra_nodes) + "\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n" + extra_nodes +
+         "$Nodes\n" +
+         std::to_string(4 + n_extra_nodes) + "\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n" + extra_nodes +
          "$EndNodes\n$Elements\n" + std::to_string(3 + n_extra_elements) +
          "\n1 1 2 1 1 1 2\n2 2 2 2 1 1 2 3\n3 2 2 2 1 " + second_triangle + "\n" + extra_elements + "$EndElements\n";
 }
@@ -83,15 +85,17 @@ Physical Curve(7) = {1}; Physical Point("tip") = {2}; Physical Surface("body") =
 TEST_CASE("a clockwise surface is turned as a whole, a single clockwise element is an error", "[unit][gmsh]") {
   TemporaryDirectory directory;
   SECTION("both triangles clockwise: a consistently oriented mesh") {
-    const Mesh mesh = read_gmsh_file({write(directory, "cw.msh",
-        "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n$EndNodes\n"
-        "$Elements\n2\n1 2 2 1 1 1 3 2\n2 2 2 1 1 1 4 3\n$EndElements\n")});
+    const Mesh mesh = read_gmsh_file(
+        {write(directory, "cw.msh",
+               "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n$EndNodes\n"
+               "$Elements\n2\n1 2 2 1 1 1 3 2\n2 2 2 1 1 1 4 3\n$EndElements\n")});
     for (int e = 0; e < mesh.n_elements(); ++e) CHECK(element_area(mesh, e) > 0);
   }
   SECTION("one of three clockwise") {
-    const std::string path = write(directory, "inverted.msh", square_msh22("1 4 3", "5 2 1 0\n", "4 2 2 2 1 2 5 3\n", 1, 1));
-    CHECK_THROWS_WITH(read_gmsh_file({path}), Catch::Matchers::Contains("inverted.msh") &&
-                                                   Catch::Matchers::Contains("element 3 is inverted"));
+    const std::string path =
+        write(directory, "inverted.msh", square_msh22("1 4 3", "5 2 1 0\n", "4 2 2 2 1 2 5 3\n", 1, 1));
+    CHECK_THROWS_WITH(read_gmsh_file({path}),
+                      Catch::Matchers::Contains("inverted.msh") && Catch::Matchers::Contains("element 3 is inverted"));
   }
 }
 
@@ -104,7 +108,8 @@ TEST_CASE("defective or unsupported files are errors naming the file", "[unit][g
       {"degenerate.msh", square_msh22("1 3 4", "5 2 0 0\n", "4 2 2 2 1 2 1 5\n", 1, 1), "element 4 is degenerate"},
       {"quads.msh", square_msh22("1 3 4", "", "4 3 2 2 1 1 2 3 4\n", 0, 1), "Quadrilateral"},
       {"garbage.msh", "this is not a mesh\n", "could not be read by Gmsh"},
-      {"truncated.msh", "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 1 4\n2 1 0 4\n", "could not be read by Gmsh"},
+      {"truncated.msh", "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 1 4\n2 1 0 4\n",
+       "could not be read by Gmsh"},
       {"empty.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n", "no triangles"},
       {"lifted.msh", square_msh22("1 3 4").replace(square_msh22("1 3 4").find("3 1 1 0"), 7, "3 1 1 5"), "z = "},
       {"bad.geo", "Point(1) = {0, 0, 0\n", "could not be meshed by Gmsh"},

@@ -28,8 +28,8 @@ DualLcp dual_of(const QuadraticProgram& qp) {
 // max(‖min(λ, w)‖∞, ‖max(0, −λ)‖∞, ‖max(0, −w)‖∞) with w = Sλ − h: zero at a solution.
 double lcp_error(const Eigen::MatrixXd& S, const Eigen::VectorXd& h, const Eigen::VectorXd& lambda) {
   const Eigen::VectorXd w = S * lambda - h;
-  return std::max({lambda.cwiseMin(w).cwiseAbs().maxCoeff(), (-lambda).cwiseMax(0.0).maxCoeff(),
-                   (-w).cwiseMax(0.0).maxCoeff()});
+  return std::max(
+      {lambda.cwiseMin(w).cwiseAbs().maxCoeff(), (-lambda).cwiseMax(0.0).maxCoeff(), (-w).cwiseMax(0.0).maxCoeff()});
 }
 
 LcpOptions tight() {
@@ -82,7 +82,8 @@ TEST_CASE("the matrix-free variant (CG on the active block) agrees with the dens
   const QuadraticProgram qp = random_qp(12, 9, seed);
   const DualLcp lcp = dual_of(qp);
   const LcpResult dense = solve_lcp(DenseLcpOperator(lcp.S), lcp.h, tight());
-  const MatrixFreeLcpOperator matrix_free(9, [&](const Eigen::VectorXd& x) { return Eigen::VectorXd(lcp.S * x); }, 1e-14);
+  const MatrixFreeLcpOperator matrix_free(
+      9, [&](const Eigen::VectorXd& x) { return Eigen::VectorXd(lcp.S * x); }, 1e-14);
   LcpOptions options = tight();
   options.tol = 1e-11;
   const LcpResult iterative = solve_lcp(matrix_free, lcp.h, options);

@@ -46,9 +46,9 @@ TEST_CASE("linear solver names parse, and a bad one names its field and the vali
   CHECK(parse_linear_solver("cholmod", "--linear-solver") == LinearSolverKind::Cholmod);
   CHECK(parse_linear_solver("petsc", "--linear-solver") == LinearSolverKind::Petsc);
   for (LinearSolverKind kind : all_linear_solvers()) CHECK(parse_linear_solver(to_string(kind), "x") == kind);
-  CHECK_THROWS_WITH(parse_linear_solver("mumps", "--linear-solver"),
-                    Catch::Matchers::StartsWith("--linear-solver = \"mumps\"") &&
-                        Catch::Matchers::Contains("valid: cholmod, petsc"));
+  CHECK_THROWS_WITH(
+      parse_linear_solver("mumps", "--linear-solver"),
+      Catch::Matchers::StartsWith("--linear-solver = \"mumps\"") && Catch::Matchers::Contains("valid: cholmod, petsc"));
   CHECK(SolveOptions{}.linear_solver == LinearSolverKind::Cholmod);  // the default
   CHECK(linear_solver_available(LinearSolverKind::Cholmod));
 }
@@ -60,7 +60,7 @@ TEST_CASE("the generic condense() and solve_columns() agree with CHOLMOD's own",
   REQUIRE(factor.ok());
   const Condensation fast = factor.condense(qp.B, qp.f);
   const Condensation slow = generic.condense(qp.B, qp.f);  // one solve per row, in blocks
-  REQUIRE(qp.n_constraints() > 32);                          // more than one block
+  REQUIRE(qp.n_constraints() > 32);                        // more than one block
   CHECK((slow.S - fast.S).norm() <= 1e-10 * fast.S.norm());
   CHECK((slow.c - fast.c).norm() <= 1e-10 * fast.c.norm());
   CHECK(slow.S == slow.S.transpose());
@@ -89,10 +89,10 @@ TEST_CASE("CHOLMOD reports its statistics through the interface", "[unit][linear
 }
 
 TEST_CASE("solver.linear_solver in a scene, and bad values there and on the command line", "[unit][linear_solver]") {
-  CHECK(parse_scene(patched_scene("scenes/hertz.json", R"({"solver": {"linear_solver": "cholmod"}})")).solver.linear_solver ==
-        LinearSolverKind::Cholmod);
-  CHECK(parse_scene(patched_scene("scenes/hertz.json", R"({"solver": {"linear_solver": "petsc"}})")).solver.linear_solver ==
-        LinearSolverKind::Petsc);
+  CHECK(parse_scene(patched_scene("scenes/hertz.json", R"({"solver": {"linear_solver": "cholmod"}})"))
+            .solver.linear_solver == LinearSolverKind::Cholmod);
+  CHECK(parse_scene(patched_scene("scenes/hertz.json", R"({"solver": {"linear_solver": "petsc"}})"))
+            .solver.linear_solver == LinearSolverKind::Petsc);
   CHECK_THROWS_WITH(parse_scene(patched_scene("scenes/hertz.json", R"({"solver": {"linear_solver": "lu"}})")),
                     Catch::Matchers::StartsWith("solver.linear_solver = \"lu\"") &&
                         Catch::Matchers::Contains("valid: cholmod, petsc"));

@@ -20,7 +20,8 @@ Eigen::Vector2d resultant(const Eigen::VectorXd& f) {
 
 Scene half_disc(int order, const std::string& loads) {
   return parse_scene(patched_scene("scenes/hertz.json", R"({"body": {"symmetry": false, "thickness": 0.5,
-      "mesh": {"size": 0.2, "contact_size": 0.05, "order": )" + std::to_string(order) + R"(}}, "load": )" + loads + "}"));
+      "mesh": {"size": 0.2, "contact_size": 0.05, "order": )" +
+                                                            std::to_string(order) + R"(}}, "load": )" + loads + "}"));
 }
 
 Eigen::VectorXd forces_of(const Scene& scene, Mesh* mesh_out = nullptr) {
@@ -74,13 +75,15 @@ TEST_CASE("a pressure on the curved arc pushes like p · chord", "[unit][loads]"
   CHECK(moment == Approx(0.0).margin(1e-12));
 }
 
-TEST_CASE("gravity: resultant ρ g · area · thickness, vertices of straight 6-node triangles get none", "[unit][loads]") {
+TEST_CASE("gravity: resultant ρ g · area · thickness, vertices of straight 6-node triangles get none",
+          "[unit][loads]") {
   const int order = GENERATE(1, 2);
   CAPTURE(order);
   const Scene scene = parse_scene(R"({
     "material": {"E": 1, "nu": 0.3},
     "body": {"shape": "rectangle", "width": 2, "height": 0.5, "thickness": 3,
-             "mesh": {"size": 0.1, "contact_size": 0.1, "order": )" + std::to_string(order) + R"(}},
+             "mesh": {"size": 0.1, "contact_size": 0.1, "order": )" +
+                                  std::to_string(order) + R"(}},
     "load": [{"type": "displacement", "boundary": "top", "value": [0, 0]},
              {"type": "gravity", "density": 2.0, "g": [0, -9.81]}],
     "obstacle": {"type": "plane", "point": [0, -1], "normal": [0, 1]}})");
@@ -97,7 +100,8 @@ TEST_CASE("a point force acts at the nearest node, halved on a symmetry plane", 
     "body": {"shape": "rectangle", "width": 2, "height": 1, "symmetry": true, "mesh": {"size": 0.1, "contact_size": 0.1}},
     "obstacle": {"type": "plane", "point": [0, -1], "normal": [0, 1]}, "load": [
       {"type": "displacement", "boundary": "bottom", "value": [null, 0]},)";
-  const Model off_axis = build_model(parse_scene(base + R"({"type": "point", "at": [0.52, 1.01], "value": [0.5, -4]}]})"));
+  const Model off_axis =
+      build_model(parse_scene(base + R"({"type": "point", "at": [0.52, 1.01], "value": [0.5, -4]}]})"));
   const Eigen::Vector2d F = resultant(off_axis.nodal_force);
   CHECK(F.isApprox(Eigen::Vector2d(0.5, -4)));
   REQUIRE(off_axis.warnings.size() == 1);  // (0.52, 1.01) is no node: the nearest takes it

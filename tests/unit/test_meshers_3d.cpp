@@ -4,13 +4,13 @@
 // tetrahedra, the defects that are errors, and the element-count estimates.
 #include <gmsh.h>
 
+#include <unistd.h>
 #include <Eigen/Dense>  // determinant()
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
-#include <unistd.h>
 
 #include "../../src/fe/shape_functions.hpp"
 #include "../../src/mesh/box_mesher.hpp"
@@ -117,9 +117,8 @@ std::string msh22(const std::vector<std::string>& nodes, const std::vector<std::
 }
 
 // The reference 10-node tetrahedron's nodes in Gmsh's order (mid-edges 01, 12, 02, 03, 23, 13).
-const std::vector<std::string> kTet10Nodes = {"1 0 0 0",     "2 1 0 0",     "3 0 1 0",     "4 0 0 1",
-                                              "5 0.5 0 0",   "6 0.5 0.5 0", "7 0 0.5 0",   "8 0 0 0.5",
-                                              "9 0 0.5 0.5", "10 0.5 0 0.5"};
+const std::vector<std::string> kTet10Nodes = {"1 0 0 0",     "2 1 0 0",   "3 0 1 0",   "4 0 0 1",     "5 0.5 0 0",
+                                              "6 0.5 0.5 0", "7 0 0.5 0", "8 0 0 0.5", "9 0 0.5 0.5", "10 0.5 0 0.5"};
 
 }  // namespace
 
@@ -142,7 +141,7 @@ TEST_CASE("Gmsh's reference nodes: its 10-node tetrahedron reordered is ours and
   local.clear();  // Gmsh appends to it
   gmsh::model::mesh::getElementProperties(9, name, dim, order, n_nodes, local, n_primary);
   REQUIRE(n_nodes == 6);
-  REQUIRE(local.size() == 12);  // dim (2) coordinates per node
+  REQUIRE(local.size() == 12);                                                         // dim (2) coordinates per node
   const double ours[6][2] = {{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}};  // v0 v1 v2 m01 m12 m20
   for (int i = 0; i < 6; ++i) {
     CHECK(local[2 * i] == ours[i][0]);
@@ -178,12 +177,14 @@ TEST_CASE("a 10-node tetrahedron read from a .msh has our node order and is turn
   REQUIRE(bottom.n_nodes == 6);
   CHECK(face_normal(mesh, bottom).isApprox(Eigen::Vector3d(0, 0, -1)));
   for (int k = 0; k < 3; ++k)
-    CHECK((mesh.nodes[bottom.nodes[3 + k]] - 0.5 * (mesh.nodes[bottom.nodes[k]] + mesh.nodes[bottom.nodes[(k + 1) % 3]]))
-              .norm() < 1e-15);
+    CHECK(
+        (mesh.nodes[bottom.nodes[3 + k]] - 0.5 * (mesh.nodes[bottom.nodes[k]] + mesh.nodes[bottom.nodes[(k + 1) % 3]]))
+            .norm() < 1e-15);
   CHECK(mesh.regions.at("body") == std::vector<int>{0});
 }
 
-TEST_CASE("the quarter hemisphere: volume and faces on the sphere and the planes with outward normals", "[unit][gmsh][3d]") {
+TEST_CASE("the quarter hemisphere: volume and faces on the sphere and the planes with outward normals",
+          "[unit][gmsh][3d]") {
   const int order = GENERATE(1, 2);
   CAPTURE(order);
   HemisphereMeshRequest request;
@@ -233,7 +234,8 @@ TEST_CASE("the quarter hemisphere: volume and faces on the sphere and the planes
   for (const BoundaryFace& face : mesh.boundaries.at("symmetry_y"))
     CHECK(face_normal(mesh, face).isApprox(Eigen::Vector3d(0, -1, 0), 1e-9));
   for (const BoundaryFace& face : mesh.boundaries.at("surface")) {
-    const Eigen::Vector3d middle = (mesh.nodes[face.nodes[0]] + mesh.nodes[face.nodes[1]] + mesh.nodes[face.nodes[2]]) / 3;
+    const Eigen::Vector3d middle =
+        (mesh.nodes[face.nodes[0]] + mesh.nodes[face.nodes[1]] + mesh.nodes[face.nodes[2]]) / 3;
     CHECK(face_normal(mesh, face).dot((middle - centre).normalized()) > 0.9);
     CHECK(face.n_nodes == (order == 1 ? 3 : 6));
   }
@@ -374,7 +376,8 @@ TEST_CASE("the box with a punch's rim embedded has nodes on the circle and the s
   const Eigen::Vector2d c = request.fine_centre;
   int on_rim = 0;
   for (int node : boundary_nodes(mesh, "bottom"))
-    on_rim += std::abs(std::hypot(mesh.nodes[node].x() - c.x(), mesh.nodes[node].y() - c.y()) - request.rim_radius) < 1e-9;
+    on_rim +=
+        std::abs(std::hypot(mesh.nodes[node].x() - c.x(), mesh.nodes[node].y() - c.y()) - request.rim_radius) < 1e-9;
   const double length = (symmetry ? 0.25 : 1.0) * 2 * kPi * request.rim_radius;
   CHECK(on_rim > 0.7 * length / request.contact_size);
   CHECK(on_rim < 2.0 * length / request.contact_size);
@@ -469,8 +472,8 @@ Curve Loop(1) = {1, 2, 3}; Plane Surface(1) = {1};
   const Mesh triangle = read_gmsh_file({flat, order});
   // The block's surfaces alone (a .msh saved with physical surfaces but no physical volume):
   // not read as a flat body, and the message says what is missing.
-  const std::string shell = directory.write("shell.msh", msh22({"1 0 0 0", "2 1 0 0", "3 0 1 0", "4 0 0 1"},
-                                                                {"1 2 2 1 1 1 2 3", "2 2 2 1 2 1 2 4"}));
+  const std::string shell = directory.write(
+      "shell.msh", msh22({"1 0 0 0", "2 1 0 0", "3 0 1 0", "4 0 0 1"}, {"1 2 2 1 1 1 2 3", "2 2 2 1 2 1 2 4"}));
   CHECK_THROWS_WITH(read_gmsh_file({shell}), Catch::Matchers::Contains("add a Physical Volume"));
   CHECK(triangle.dim == 2);
   CHECK(triangle.type() == (order == 1 ? ElementType::Tri3 : ElementType::Tri6));

@@ -3,7 +3,8 @@
 // ctest counted two passes. Four test cases were lost that way; keep names free of ';'.
 #include <catch2/catch.hpp>
 
-TEST_CASE("no test case name holds a semicolon, which would split it into ctest entries that run nothing", "[unit][docs]") {
+TEST_CASE("no test case name holds a semicolon, which would split it into ctest entries that run nothing",
+          "[unit][docs]") {
   const std::vector<Catch::TestCase>& tests = Catch::getRegistryHub().getTestCaseRegistry().getAllTests();
   REQUIRE(tests.size() > 100);  // the registry really is the whole suite
   for (const Catch::TestCase& test : tests) {

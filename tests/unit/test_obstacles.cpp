@@ -67,7 +67,8 @@ TEST_CASE("a profile: segments, extended ends and vertices", "[unit][obstacle]")
   const ObstacleSpec v = profile({{-1, 1}, {0, 0}, {1, 1}}, true);
   SECTION("a point above a segment: its distance to the segment's line") {
     const auto p = project(v, Eigen::Vector2d(0.5, 1.5));
-    CHECK(p.gap == Approx((Eigen::Vector2d(0.5, 1.5) - Eigen::Vector2d(0, 0)).dot(Eigen::Vector2d(-1, 1).normalized())));
+    CHECK(p.gap ==
+          Approx((Eigen::Vector2d(0.5, 1.5) - Eigen::Vector2d(0, 0)).dot(Eigen::Vector2d(-1, 1).normalized())));
     CHECK(p.normal.head<2>().isApprox(Eigen::Vector2d(-1, 1).normalized()));
   }
   SECTION("beyond the last point the last segment goes on") {
@@ -105,8 +106,12 @@ TEST_CASE("the normal is the gradient of the gap, for every obstacle type", "[un
     for (const Eigen::Vector2d& x : points) {
       CAPTURE(o.type(), x.transpose());
       const auto p = project(o, x);
-      const Eigen::Vector2d gradient((project(o, Eigen::Vector2d(x + h * Eigen::Vector2d::UnitX())).gap - project(o, Eigen::Vector2d(x - h * Eigen::Vector2d::UnitX())).gap) / (2 * h),
-                                     (project(o, Eigen::Vector2d(x + h * Eigen::Vector2d::UnitY())).gap - project(o, Eigen::Vector2d(x - h * Eigen::Vector2d::UnitY())).gap) / (2 * h));
+      const Eigen::Vector2d gradient((project(o, Eigen::Vector2d(x + h * Eigen::Vector2d::UnitX())).gap -
+                                      project(o, Eigen::Vector2d(x - h * Eigen::Vector2d::UnitX())).gap) /
+                                         (2 * h),
+                                     (project(o, Eigen::Vector2d(x + h * Eigen::Vector2d::UnitY())).gap -
+                                      project(o, Eigen::Vector2d(x - h * Eigen::Vector2d::UnitY())).gap) /
+                                         (2 * h));
       CHECK((gradient - p.normal.head<2>()).norm() < 1e-6);
       CHECK(p.normal.norm() == Approx(1.0));
     }

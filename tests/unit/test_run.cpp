@@ -62,7 +62,8 @@ TEST_CASE("run_scene calls the scene's observer and reports bad options before a
 
   scene.solver.tol = -1;
   CHECK_THROWS_WITH(contactqp::run_scene(scene), Catch::Matchers::Contains("tol = -1"));
-  CHECK_THROWS_WITH(contactqp::run_scene(std::string("/nonexistent/scene.json")), Catch::Matchers::Contains("/nonexistent/scene.json"));
+  CHECK_THROWS_WITH(contactqp::run_scene(std::string("/nonexistent/scene.json")),
+                    Catch::Matchers::Contains("/nonexistent/scene.json"));
 }
 
 TEST_CASE("compare_scene: every available backend on one QP, certified by one factor", "[unit][run]") {

@@ -28,7 +28,8 @@ TEST_CASE("rotation matrices are exact for quarter turns", "[unit][transform]") 
 TEST_CASE("rotated() turns obstacles and load vectors, not prescribed components", "[unit][transform]") {
   Scene scene = parse_scene(patched_scene("scenes/block-on-circle.json", R"({"transform": {"rotate_degrees": 90},
       "load": [{"type": "displacement", "boundary": "top", "value": [null, -0.02]},
-               {"type": "gravity", "density": 1, "g": [0, -1]}]})"), source_path("scenes/x.json"));
+               {"type": "gravity", "density": 1, "g": [0, -1]}]})"),
+                            source_path("scenes/x.json"));
   const Scene turned = rotated(scene);
   CHECK(turned.transform.is_identity());
   CHECK(turned.obstacles[0].as<CircleObstacle>()->center.isApprox(Eigen::Vector3d(1, 0, 0)));
@@ -40,7 +41,8 @@ TEST_CASE("Hertz turned by any angle: the same force, b and p0 within 1e-6", "[u
   const SceneRun base = run_scene("scenes/hertz.json");
   const double angle = GENERATE(30.0, 137.5, -90.0, 1e-3);
   CAPTURE(angle);
-  const SceneRun turned = run_scene("scenes/hertz.json", R"({"transform": {"rotate_degrees": )" + std::to_string(angle) + "}}");
+  const SceneRun turned =
+      run_scene("scenes/hertz.json", R"({"transform": {"rotate_degrees": )" + std::to_string(angle) + "}}");
   REQUIRE(turned.result.status == Status::Converged);
   CHECK(relative(turned.contact.total_force, base.contact.total_force) < 1e-6);
   CHECK(relative(turned.contact.half_width, base.contact.half_width) < 1e-6);
@@ -56,7 +58,8 @@ TEST_CASE("Hertz turned by any angle: the same force, b and p0 within 1e-6", "[u
   }
   CHECK(worst < 1e-6 * u0.cwiseAbs().maxCoeff());
   // The push needed is the same force, along the turned axis.
-  CHECK((turned.reactions[0].force.head<2>() - R * base.reactions[0].force.head<2>()).norm() < 1e-6 * base.reactions[0].force.norm());
+  CHECK((turned.reactions[0].force.head<2>() - R * base.reactions[0].force.head<2>()).norm() <
+        1e-6 * base.reactions[0].force.norm());
 }
 
 TEST_CASE("a turned circle indenter with gravity and a point load: invariant too", "[unit][transform]") {

@@ -45,7 +45,8 @@ void check_vtu_of(const std::string& scene) {
   REQUIRE(run.exit_status == 0);
   const json result = json::parse(read_text(result_path));
   const std::string read_back = directory.path("vtu.json");
-  const std::string command = "/usr/bin/python3 " + source_path("tests/tools/read_vtu.py") + " " + vtu + " > " + read_back;
+  const std::string command =
+      "/usr/bin/python3 " + source_path("tests/tools/read_vtu.py") + " " + vtu + " > " + read_back;
   REQUIRE(std::system(command.c_str()) == 0);
   const json grid = json::parse(read_text(read_back));
   CHECK(grid["points"] == result["nodes"]);
@@ -54,10 +55,11 @@ void check_vtu_of(const std::string& scene) {
     check_3d_vtu(grid, result);
     return;
   }
-  CHECK(grid["cell_types"] == json::array({result["element_order"] == 1 ? 5 : 22}));  // VTK_TRIANGLE, VTK_QUADRATIC_TRIANGLE
-  const std::pair<const char*, int> arrays[] = {{"displacement", 3}, {"sigma_xx", 1}, {"sigma_yy", 1}, {"sigma_xy", 1},
-                                                {"sigma_zz", 1}, {"von_mises", 1}, {"contact_pressure", 1},
-                                                {"contact_force", 3}, {"gap", 1}, {"contact_boundary", 1}};
+  CHECK(grid["cell_types"] ==
+        json::array({result["element_order"] == 1 ? 5 : 22}));  // VTK_TRIANGLE, VTK_QUADRATIC_TRIANGLE
+  const std::pair<const char*, int> arrays[] = {
+      {"displacement", 3}, {"sigma_xx", 1},         {"sigma_yy", 1},      {"sigma_xy", 1}, {"sigma_zz", 1},
+      {"von_mises", 1},    {"contact_pressure", 1}, {"contact_force", 3}, {"gap", 1},      {"contact_boundary", 1}};
   for (const auto& [name, components] : arrays) {
     CAPTURE(name);
     REQUIRE(grid["arrays"].contains(name));

@@ -133,9 +133,9 @@ TEST_CASE("over the dense limit, active_set applies S matrix-free and says so", 
 }
 
 TEST_CASE("active_set needs few iterations on every Hertz mesh", "[validation][active_set]") {
-  const std::string patch = GENERATE(as<std::string>{}, kCoarse, "{}", R"({"body": {"mesh": {"size": 0.05, "contact_size": 0.001}}})",
-                               R"({"body": {"mesh": {"order": 2}}})",
-                               R"({"body": {"symmetry": false}, "load": {"value": [0.0, -0.016]}})");
+  const std::string patch = GENERATE(
+      as<std::string>{}, kCoarse, "{}", R"({"body": {"mesh": {"size": 0.05, "contact_size": 0.001}}})",
+      R"({"body": {"mesh": {"order": 2}}})", R"({"body": {"symmetry": false}, "load": {"value": [0.0, -0.016]}})");
   CAPTURE(patch);
   const SolveResult r = solve(hertz_qp(patch), active_set(1e-8));
   INFO(r.message);
@@ -145,7 +145,7 @@ TEST_CASE("active_set needs few iterations on every Hertz mesh", "[validation][a
 
 TEST_CASE("active_set keeps ≤ 15 iterations on fine Hertz meshes", "[.slow][active_set]") {
   const std::string patch = GENERATE(as<std::string>{}, R"({"body": {"mesh": {"size": 0.01, "contact_size": 0.0005}}})",
-                               R"({"body": {"mesh": {"size": 0.004, "contact_size": 0.0002}}})");
+                                     R"({"body": {"mesh": {"size": 0.004, "contact_size": 0.0002}}})");
   CAPTURE(patch);
   const QuadraticProgram qp = hertz_qp(patch);
   const SolveResult r = solve(qp, active_set(1e-8));
@@ -175,7 +175,8 @@ TEST_CASE("solve_without_contact gives u = K⁻¹f with the same factorisation p
 
 TEST_CASE("contactqp solve --no-contact reports the linear solve like any solve", "[validation][active_set][cli]") {
   TemporaryDirectory directory;
-  const CliRun solved = run_cli("solve " + source_path("scenes/hertz.json") + " --no-contact --json " + directory.path("r.json"));
+  const CliRun solved =
+      run_cli("solve " + source_path("scenes/hertz.json") + " --no-contact --json " + directory.path("r.json"));
   CAPTURE(solved.out, solved.err);
   REQUIRE(solved.exit_status == 0);
   const nlohmann::json result = nlohmann::json::parse(read_text(directory.path("r.json")));
@@ -198,10 +199,10 @@ TEST_CASE("contactqp solve --backend active_set writes the phase timings, and ba
   REQUIRE(run.exit_status == 0);
   const nlohmann::json result = nlohmann::json::parse(read_text(directory.path("r.json")));
   CHECK(result["backend"] == "active_set");
-  for (const char* phase : {"factorize", "condense", "iterate", "recover", "solve"}) CHECK(result["timings"].contains(phase));
+  for (const char* phase : {"factorize", "condense", "iterate", "recover", "solve"})
+    CHECK(result["timings"].contains(phase));
 
-  const CliRun matrix_free =
-      run_cli("solve " + scene + " --backend active_set --backend-option max_dense_mb=0.01");
+  const CliRun matrix_free = run_cli("solve " + scene + " --backend active_set --backend-option max_dense_mb=0.01");
   CHECK(matrix_free.exit_status == 0);
   CHECK(matrix_free.out.find("matrix-free") != std::string::npos);
   const CliRun bad = run_cli("solve " + scene + " --backend active_set --backend-option max_dense_mb=-1 --json " +
@@ -216,7 +217,8 @@ TEST_CASE("contactqp solve --backend active_set writes the phase timings, and ba
   CHECK(addressed.exit_status == 0);
 }
 
-TEST_CASE("SolveOptions::ordering reaches the factorisation and does not change the answer", "[validation][active_set]") {
+TEST_CASE("SolveOptions::ordering reaches the factorisation and does not change the answer",
+          "[validation][active_set]") {
   const QuadraticProgram qp = hertz_qp();
   const SolveResult amd = solve(qp, active_set(1e-10));
   SolveOptions options = active_set(1e-10);

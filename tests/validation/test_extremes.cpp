@@ -3,9 +3,9 @@
 // nothing holds. Every backend, each against an independent truth: the same scene in other
 // units, an enumerated dual, an exact uniform compression, a rigid shift.
 #include <catch2/catch.hpp>
-#include <nlohmann/json.hpp>
 #include <cstdlib>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "contactqp/certificate.hpp"
@@ -138,8 +138,8 @@ TEST_CASE("units: E × 1e±9 and lengths × 1e±3 give the same scaled answer on
   // A Gmsh file of the Hertz disc (6-node triangles), written by the gmsh program, and the
   // same file in other length units, node for node.
   const std::string msh = directory.path("disc-1.msh");
-  const std::string command = "gmsh " + source_path("scenes/hertz_disc.geo") + " -2 -order 2 -clscale 4 -format msh22 -o " + msh +
-                              " >/dev/null 2>&1";
+  const std::string command = "gmsh " + source_path("scenes/hertz_disc.geo") +
+                              " -2 -order 2 -clscale 4 -format msh22 -o " + msh + " >/dev/null 2>&1";
   REQUIRE(std::system(command.c_str()) == 0);
   const std::string msh_text = read_text(msh);
 
@@ -148,17 +148,21 @@ TEST_CASE("units: E × 1e±9 and lengths × 1e±3 give the same scaled answer on
     json scene;
   };
   const Case cases[] = {
-      {"hertz, 3-node", json::parse(patched_scene("scenes/hertz.json", R"({"body": {"mesh": {"contact_size": 0.004}}})"))},
+      {"hertz, 3-node",
+       json::parse(patched_scene("scenes/hertz.json", R"({"body": {"mesh": {"contact_size": 0.004}}})"))},
       {"block on a circle with gravity",
        json::parse(patched_scene("scenes/block-on-circle.json",
                                  R"({"body": {"mesh": {"size": 0.4, "contact_size": 0.01}},
                                      "load": [{"type": "displacement", "boundary": "top", "value": [null, -0.02]},
                                               {"type": "gravity", "density": 0.003, "g": [0, -9.81]}]})"))},
-      {"a Gmsh file, 6-node", json::parse(patched_scene("scenes/hertz-gmsh.json", R"({"body": {"file": "disc-1.msh"}})"))},
-      {"mixed, nu = 0.499", json::parse(patched_scene("scenes/hertz-order2.json",
-                                                      R"({"material": {"nu": 0.499}, "body": {"formulation": "mixed"}})"))},
+      {"a Gmsh file, 6-node",
+       json::parse(patched_scene("scenes/hertz-gmsh.json", R"({"body": {"file": "disc-1.msh"}})"))},
+      {"mixed, nu = 0.499",
+       json::parse(patched_scene("scenes/hertz-order2.json",
+                                 R"({"material": {"nu": 0.499}, "body": {"formulation": "mixed"}})"))},
   };
-  const std::vector<std::pair<double, double>> factors = {{1e9, 1}, {1e-9, 1}, {1, 1e3}, {1, 1e-3}, {1e12, 1e-6}, {1e-6, 1e3}};
+  const std::vector<std::pair<double, double>> factors = {{1e9, 1},  {1e-9, 1},    {1, 1e3},
+                                                          {1, 1e-3}, {1e12, 1e-6}, {1e-6, 1e3}};
   for (const Case& c : cases) {
     const std::string source = directory.path("scene.json");
     const Run base = run(c.scene.dump(), backend, 1e-8, source);
@@ -271,8 +275,9 @@ TEST_CASE("an initial gap: no contact, λ = 0 exactly and u the linear solution,
   // The plane 0.05 R below the disc, the cut pushed by 0.016 R; every node within 0.1 R of the
   // plane is a candidate, none touches.
   const double tol = 1e-8;
-  const Run r = run(patched_scene("scenes/hertz.json", R"({"obstacle": {"point": [0, -0.05]}, "contact": {"max_gap": 0.1}})"),
-                    backend, tol);
+  const Run r =
+      run(patched_scene("scenes/hertz.json", R"({"obstacle": {"point": [0, -0.05]}, "contact": {"max_gap": 0.1}})"),
+          backend, tol);
   check_certified(r, tol);
   REQUIRE(r.qp.n_constraints() > 50);
   CHECK((r.result.lambda.array() == 0.0).all());
@@ -290,12 +295,12 @@ TEST_CASE("an initial penetration is a rigid shift of a deeper push, on every ba
   // plane at 0 with the cut pushed by δ + c: the same multipliers, the displacement shifted.
   // The candidate distances are chosen so that both see the same nodes (y ≤ 0.029 R).
   const double tol = 1e-10, c = 0.005;
-  const Run penetrating = run(patched_scene("scenes/hertz.json",
-                                            R"({"obstacle": {"point": [0, 0.005]}, "contact": {"max_gap": 0.024}})"),
-                              backend, tol);
-  const Run shifted = run(patched_scene("scenes/hertz.json",
-                                        R"({"load": {"value": [null, -0.021]}, "contact": {"max_gap": 0.029}})"),
-                          backend, tol);
+  const Run penetrating =
+      run(patched_scene("scenes/hertz.json", R"({"obstacle": {"point": [0, 0.005]}, "contact": {"max_gap": 0.024}})"),
+          backend, tol);
+  const Run shifted =
+      run(patched_scene("scenes/hertz.json", R"({"load": {"value": [null, -0.021]}, "contact": {"max_gap": 0.029}})"),
+          backend, tol);
   check_certified(penetrating, tol);
   check_certified(shifted, tol);
   REQUIRE(penetrating.qp.g.minCoeff() < -0.004);
@@ -317,7 +322,8 @@ TEST_CASE("every candidate in contact: a block pressed flat, exact uniform press
   const double E = 3.0, nu = 0.3, h = 1.0, delta = 0.01, tol = 1e-10;
   const std::string scene = R"({"material": {"E": 3.0, "nu": 0.3},
       "body": {"shape": "rectangle", "width": 2.0, "height": 1.0, "symmetry": true,
-               "mesh": {"size": 0.2, "contact_size": 0.05, "order": )" + std::to_string(order) + R"(}},
+               "mesh": {"size": 0.2, "contact_size": 0.05, "order": )" +
+                            std::to_string(order) + R"(}},
       "load": {"type": "displacement", "boundary": "top", "value": [null, -0.01]},
       "obstacle": {"type": "plane", "point": [0, 0], "normal": [0, 1]}})";
   const Run r = run(scene, backend, tol);
@@ -340,7 +346,9 @@ TEST_CASE("a body nothing holds is bad input naming the free motion and the fix"
   };
   const Case cases[] = {
       // Hertz's whole disc pushed down with u_x left free: it can slide sideways.
-      {"scenes/hertz.json", R"({"body": {"symmetry": false}})", {"load", "translation in x", "prescribe u_x", "body.symmetry"}},
+      {"scenes/hertz.json",
+       R"({"body": {"symmetry": false}})",
+       {"load", "translation in x", "prescribe u_x", "body.symmetry"}},
       // The same turned by 30°: the free motion is named in the scene's own axes.
       {"scenes/hertz-rotated.json", R"({"body": {"symmetry": false}})", {"translation in x"}},
       // A block loaded by a traction only: free in every rigid motion.
@@ -348,7 +356,8 @@ TEST_CASE("a body nothing holds is bad input naming the free motion and the fix"
        R"({"body": {"symmetry": false}, "load": {"type": "traction", "value": [0, -0.01]}})",
        {"translations in x and y and rotation", "prescribes both components"}},
       // u_x held along the top only: the block can still drop, or turn about the top's middle.
-      {"scenes/block-on-circle.json", R"({"body": {"symmetry": false}, "load": {"value": [0, null]}})",
+      {"scenes/block-on-circle.json",
+       R"({"body": {"symmetry": false}, "load": {"value": [0, null]}})",
        {"translation in y and rotation about (0, 2)"}},
   };
   for (const Case& c : cases) {
@@ -421,7 +430,8 @@ TEST_CASE("ρ extremes: tiny ρ stops at the iteration limit, huge ρ diverges, 
     const char* rho;
     const char* status;
   };
-  const Case cases[] = {{"1e-6x", "max_iterations"}, {"100x", "diverged"}, {"1e300x", "diverged"}, {"1e300", "diverged"}};
+  const Case cases[] = {
+      {"1e-6x", "max_iterations"}, {"100x", "diverged"}, {"1e300x", "diverged"}, {"1e300", "diverged"}};
   for (Backend backend : available_backends()) {
     const std::string name = to_string(backend);
     if (name.rfind("uzawa", 0) != 0) continue;  // the backends with a step ρ

@@ -60,9 +60,12 @@ TEST_CASE("other radii, materials, pushes and meshes stay within Hertz's 3% in 3
   CHECK(hertz.error_l2 < 0.06);
 }
 
-TEST_CASE("10-node tetrahedra reach a smaller pressure error than 4-node ones with fewer DOFs", "[validation][hertz][3d]") {
-  const SceneRun linear = run_scene("scenes/hertz-sphere.json", R"({"body": {"mesh": {"contact_size": 0.01, "order": 1}}})");
-  const SceneRun quadratic = run_scene("scenes/hertz-sphere.json", R"({"body": {"mesh": {"contact_size": 0.02, "order": 2}}})");
+TEST_CASE("10-node tetrahedra reach a smaller pressure error than 4-node ones with fewer DOFs",
+          "[validation][hertz][3d]") {
+  const SceneRun linear =
+      run_scene("scenes/hertz-sphere.json", R"({"body": {"mesh": {"contact_size": 0.01, "order": 1}}})");
+  const SceneRun quadratic =
+      run_scene("scenes/hertz-sphere.json", R"({"body": {"mesh": {"contact_size": 0.02, "order": 2}}})");
   CAPTURE(linear.qp.n_dofs(), quadratic.qp.n_dofs());
   CHECK(quadratic.qp.n_dofs() < 2 * linear.qp.n_dofs());
   CHECK(hertz_of(quadratic).error_l2 < 0.75 * hertz_of(linear).error_l2);
@@ -71,10 +74,13 @@ TEST_CASE("10-node tetrahedra reach a smaller pressure error than 4-node ones wi
 
 TEST_CASE("a 3D scene turned about any axis: the same force, a and p0 within 1e-6", "[validation][transform][3d]") {
   const SceneRun base = run_scene("scenes/hertz-sphere.json", kCoarseSphere);
-  const char* turn = GENERATE(R"({"axis": [1, 2, 3], "rotate_degrees": 37})", R"({"axis": [0, 1, 0], "rotate_degrees": 90})",
-                              R"({"axis": [-1, 0.5, 0.2], "rotate_degrees": 151.5})");
+  const char* turn =
+      GENERATE(R"({"axis": [1, 2, 3], "rotate_degrees": 37})", R"({"axis": [0, 1, 0], "rotate_degrees": 90})",
+               R"({"axis": [-1, 0.5, 0.2], "rotate_degrees": 151.5})");
   CAPTURE(turn);
-  const SceneRun turned = run_scene("scenes/hertz-sphere.json", std::string(R"({"body": {"mesh": {"contact_size": 0.03, "order": 1}}, "transform": )") + turn + "}");
+  const SceneRun turned =
+      run_scene("scenes/hertz-sphere.json",
+                std::string(R"({"body": {"mesh": {"contact_size": 0.03, "order": 1}}, "transform": )") + turn + "}");
   REQUIRE(turned.result.status == Status::Converged);
   CHECK(relative(turned.contact.total_force, base.contact.total_force) < 1e-6);
   CHECK(relative(turned.contact.contact_radius, base.contact.contact_radius) < 1e-6);
@@ -84,11 +90,15 @@ TEST_CASE("a 3D scene turned about any axis: the same force, a and p0 within 1e-
   CHECK(relative(-turned.reactions.at(0).force.dot(axis), -base.reactions.at(0).force.z()) < 1e-6);
 }
 
-TEST_CASE("3D units: E × 1e±9 and lengths × 1e±3 give the same scaled answer on every backend", "[validation][units][3d]") {
+TEST_CASE("3D units: E × 1e±9 and lengths × 1e±3 give the same scaled answer on every backend",
+          "[validation][units][3d]") {
   const Backend backend = GENERATE(from_range(available_backends()));
   CAPTURE(to_string(backend));
-  const std::string solver = R"(, "solver": {"backend": ")" + to_string(backend) + R"(", "tol": 1e-10, "max_iterations": 20000})";
-  const SceneRun base = run_scene("scenes/hertz-sphere.json", std::string(R"({"body": {"mesh": {"contact_size": 0.03, "order": 1}})") + solver + "}");
+  const std::string solver =
+      R"(, "solver": {"backend": ")" + to_string(backend) + R"(", "tol": 1e-10, "max_iterations": 20000})";
+  const SceneRun base =
+      run_scene("scenes/hertz-sphere.json",
+                std::string(R"({"body": {"mesh": {"contact_size": 0.03, "order": 1}})") + solver + "}");
   REQUIRE(base.result.status == Status::Converged);
   const double E = GENERATE(1e9, 1e-9);
   const double L = GENERATE(1e3, 1e-3);
@@ -96,7 +106,8 @@ TEST_CASE("3D units: E × 1e±9 and lengths × 1e±3 give the same scaled answer
   auto text = [](double x) { return detail::format_value(x); };
   const std::string patch = R"({"material": {"E": )" + text(E) + R"(}, "body": {"radius": )" + text(L) +
                             R"(, "mesh": {"size": )" + text(0.2 * L) + R"(, "contact_size": )" + text(0.03 * L) +
-                            R"(, "order": 1}}, "load": {"value": [null, null, )" + text(-0.01 * L) + "]}" + solver + "}";
+                            R"(, "order": 1}}, "load": {"value": [null, null, )" + text(-0.01 * L) + "]}" + solver +
+                            "}";
   const SceneRun scaled = run_scene("scenes/hertz-sphere.json", patch);
   REQUIRE(scaled.result.status == Status::Converged);
   // Force scales with E L², lengths with L, pressures with E.
@@ -105,7 +116,8 @@ TEST_CASE("3D units: E × 1e±9 and lengths × 1e±3 give the same scaled answer
   CHECK(relative(scaled.contact.max_pressure, base.contact.max_pressure * E) < 1e-6);
 }
 
-TEST_CASE("a block pressed flat on a plane in 3D: uniform pressure E δ/H, exact with 4-node tetrahedra", "[validation][3d]") {
+TEST_CASE("a block pressed flat on a plane in 3D: uniform pressure E δ/H, exact with 4-node tetrahedra",
+          "[validation][3d]") {
   // Frictionless contact leaves the block free to widen: uniaxial stress σzz = −E δ/H.
   const std::string scene = R"({"model": "solid", "material": {"E": 2.0, "nu": 0.3},
     "body": {"shape": "box", "width": 1.0, "depth": 0.6, "height": 0.5, "symmetry": true,

@@ -47,9 +47,9 @@ TEST_CASE("the Gmsh-meshed Hertz disc passes the 3% Hertz check", "[validation][
 }
 
 TEST_CASE("a rigid circle pressed into a flat block matches Hertz with R = r within 5%", "[validation][scenes]") {
-  const char* patch = GENERATE(R"({})",
-                               R"({"obstacle": {"center": [0, -2.5], "radius": 2.5}, "load": {"value": [null, -0.03]}})",
-                               R"({"material": {"E": 70e9, "nu": 0.33}, "body": {"width": 6, "height": 3}})");
+  const char* patch =
+      GENERATE(R"({})", R"({"obstacle": {"center": [0, -2.5], "radius": 2.5}, "load": {"value": [null, -0.03]}})",
+               R"({"material": {"E": 70e9, "nu": 0.33}, "body": {"width": 6, "height": 3}})");
   CAPTURE(patch);
   const SceneRun run = run_scene("scenes/block-on-circle.json", patch);
   REQUIRE(run.result.status == Status::Converged);
@@ -61,7 +61,8 @@ TEST_CASE("a rigid circle pressed into a flat block matches Hertz with R = r wit
   CHECK(hertz.error_l2 < 0.05);
 }
 
-TEST_CASE("a circle into a Gmsh-meshed flat block, turned: the fitted body curvature is zero", "[validation][scenes][gmsh]") {
+TEST_CASE("a circle into a Gmsh-meshed flat block, turned: the fitted body curvature is zero",
+          "[validation][scenes][gmsh]") {
   TemporaryDirectory directory;
   std::ofstream(directory.path("block.geo")) << R"geo(
 Point(1) = {-2, 0, 0}; Point(2) = {2, 0, 0}; Point(3) = {2, 2, 0}; Point(4) = {-2, 2, 0};
@@ -74,9 +75,12 @@ Field[2] = MathEval; Field[2].F = "Min(0.2, 0.003 + 0.1 * F1)"; Background Field
 Mesh.MeshSizeExtendFromBoundary = 0; Mesh.MeshSizeFromPoints = 0; Mesh.MeshSizeFromCurvature = 0;
 )geo";
   const std::string msh = directory.path("block.msh");
-  REQUIRE(std::system(("gmsh " + directory.path("block.geo") + " -2 -format msh22 -o " + msh + " >/dev/null 2>&1").c_str()) == 0);
+  REQUIRE(std::system(
+              ("gmsh " + directory.path("block.geo") + " -2 -format msh22 -o " + msh + " >/dev/null 2>&1").c_str()) ==
+          0);
   const SceneRun run = run_scene(parse_scene(R"({"material": {"E": 200e9, "nu": 0.3},
-      "body": {"shape": "mesh", "file": ")" + msh + R"("},
+      "body": {"shape": "mesh", "file": ")" + msh +
+                                             R"("},
       "load": {"type": "displacement", "boundary": "top", "value": [0, -0.02]},
       "obstacle": {"type": "circle", "center": [0, -1], "radius": 1},
       "contact": {"boundary": "bottom"}, "transform": {"rotate_degrees": 77}})"));
@@ -135,10 +139,10 @@ TEST_CASE("a strip lifts off its foundation beyond a receding contact zone", "[v
     if (std::abs(x) < 1.0) inner_gap = std::max(inner_gap, gap);
     if (std::abs(x) > 1.9) end_gap = std::max(end_gap, gap);
   }
-  CHECK(widest < 1.6);                    // contact under the middle only ...
+  CHECK(widest < 1.6);  // contact under the middle only ...
   CHECK(widest > 0.9);
-  CHECK(inner_gap < 1e-6 * 0.01);         // ... closed there (the punch pushes 0.01) ...
-  CHECK(end_gap > 1e-4);                  // ... and the ends off the ground
+  CHECK(inner_gap < 1e-6 * 0.01);  // ... closed there (the punch pushes 0.01) ...
+  CHECK(end_gap > 1e-4);           // ... and the ends off the ground
   // Vertical equilibrium: the foundation carries the punch and the strip's weight.
   const double weight = 0.05 * 9.81 * 4.0 * 1.0;
   CHECK(run.contact.total_force == Approx(-run.reactions.at(0).force.y() + weight).epsilon(1e-6));
@@ -149,7 +153,9 @@ TEST_CASE("without weight the contact zone does not depend on the push", "[valid
   // ten times the push gives ten times every force on the same contact zone.
   const std::string weightless = R"({"load": [{"type": "displacement", "boundary": "punch", "value": [0.0, -0.01]}]})";
   const SceneRun push = run_scene("scenes/strip-liftoff.json", weightless);
-  const SceneRun harder = run_scene("scenes/strip-liftoff.json", R"({"load": [{"type": "displacement", "boundary": "punch", "value": [0.0, -0.1]}]})");
+  const SceneRun harder =
+      run_scene("scenes/strip-liftoff.json",
+                R"({"load": [{"type": "displacement", "boundary": "punch", "value": [0.0, -0.1]}]})");
   REQUIRE(push.result.status == Status::Converged);
   REQUIRE(harder.result.status == Status::Converged);
   CHECK(loaded_nodes(push) == loaded_nodes(harder));
@@ -178,7 +184,8 @@ TEST_CASE("6-node triangles reach the 3-node accuracy with a quarter of the DOFs
 }
 
 TEST_CASE("plane stress with a thickness: forces scale with it, pressures do not", "[validation][scenes]") {
-  const std::string base = R"({"model": "plane_stress", "body": {"mesh": {"size": 0.4, "contact_size": 0.01}}, "contact": {"max_gap": 0.05},
+  const std::string base =
+      R"({"model": "plane_stress", "body": {"mesh": {"size": 0.4, "contact_size": 0.01}}, "contact": {"max_gap": 0.05},
       "load": [{"type": "displacement", "boundary": "top", "value": [null, -0.02]}, {"type": "gravity", "density": 0.001, "g": [0, -1]},
                {"type": "traction", "boundary": "right", "value": [0, -0.001]}]})";
   const SceneRun unit = run_scene("scenes/block-on-circle.json", base);

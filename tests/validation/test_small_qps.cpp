@@ -38,8 +38,8 @@ TEST_CASE("Uzawa matches the enumerated solution of random QPs", "[validation][u
 
 TEST_CASE("a degenerate constraint, active with λ = 0", "[validation][uzawa]") {
   // min ½|u|² − u₀  s.t.  u₀ ≤ 1: the free optimum (1, 0) lies exactly on the bound.
-  const QuadraticProgram qp = make_qp(Eigen::MatrixXd::Identity(2, 2), Eigen::Vector2d(1, 0),
-                                      Eigen::RowVector2d(1, 0), Eigen::VectorXd::Ones(1));
+  const QuadraticProgram qp = make_qp(Eigen::MatrixXd::Identity(2, 2), Eigen::Vector2d(1, 0), Eigen::RowVector2d(1, 0),
+                                      Eigen::VectorXd::Ones(1));
   const SolveResult r = solve(qp, options_for(Backend::Uzawa, 1e-12));
   REQUIRE(r.status == Status::Converged);
   CHECK(r.u[0] == Approx(1.0).epsilon(1e-12));
@@ -47,8 +47,8 @@ TEST_CASE("a degenerate constraint, active with λ = 0", "[validation][uzawa]") 
 }
 
 TEST_CASE("no constraints: the linear solution, in one iteration", "[validation][uzawa]") {
-  QuadraticProgram qp = make_qp(Eigen::Matrix2d{{2, 1}, {1, 3}}, Eigen::Vector2d(1, 2), Eigen::MatrixXd(0, 2),
-                                Eigen::VectorXd(0));
+  QuadraticProgram qp =
+      make_qp(Eigen::Matrix2d{{2, 1}, {1, 3}}, Eigen::Vector2d(1, 2), Eigen::MatrixXd(0, 2), Eigen::VectorXd(0));
   const SolveResult r = solve(qp, options_for(Backend::Uzawa, 1e-10));
   REQUIRE(r.status == Status::Converged);
   CHECK(r.iterations == 1);

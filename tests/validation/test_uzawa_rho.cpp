@@ -4,8 +4,8 @@
 #include <Eigen/Eigenvalues>
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <nlohmann/json.hpp>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <regex>
 
@@ -122,7 +122,8 @@ TEST_CASE("the estimate covers the rows the unconstrained solution violates", "[
   CHECK(relative_difference(r.u, truth.u) < 1e-8);
 }
 
-TEST_CASE("ρ in the caller's units: E × 1e6 scales ρ and ρ_max, not ρ/ρ_max or the iterations", "[validation][uzawa][rho]") {
+TEST_CASE("ρ in the caller's units: E × 1e6 scales ρ and ρ_max, not ρ/ρ_max or the iterations",
+          "[validation][uzawa][rho]") {
   const QuadraticProgram qp = all_active(chain_K(10));
   QuadraticProgram stiff = qp;
   stiff.K *= 1e6;
@@ -196,7 +197,8 @@ TEST_CASE("the accelerated variant reaches the plain and the enumerated solution
   CHECK((accelerated.lambda.array() >= 0).all());
 }
 
-TEST_CASE("the accelerated variant: fewer iterations at the same answer, every iterate observed", "[validation][uzawa][rho]") {
+TEST_CASE("the accelerated variant: fewer iterations at the same answer, every iterate observed",
+          "[validation][uzawa][rho]") {
   const KnownSpectrum known = known_spectra()[1];
   const QuadraticProgram qp = all_active(known.K);
   const SolveResult plain = solve(qp, options_for(Backend::Uzawa, 1e-10));
@@ -217,7 +219,8 @@ TEST_CASE("the accelerated variant: fewer iterations at the same answer, every i
   CHECK(relative_difference(accelerated.lambda, qp.f - qp.K * qp.g) < 1e-8);
 }
 
-TEST_CASE("the automatic ρ falls back to every row when the working-set step does not converge", "[validation][uzawa][rho]") {
+TEST_CASE("the automatic ρ falls back to every row when the working-set step does not converge",
+          "[validation][uzawa][rho]") {
   // Three DOFs, u ≤ g, with S = K⁻¹ = [[1, 0, −½], [0, 0.1, 0], [−½, 0, 1]] (eigenvalues 1.5,
   // 0.5, 0.1). The unconstrained solution (2, 1, 0) violates rows 0 and 1 only, whose block
   // diag(1, 0.1) gives ρ_opt = 2/1.1; holding u₀ at its bound drives u₂ past its own, so row 2
@@ -225,8 +228,8 @@ TEST_CASE("the automatic ρ falls back to every row when the working-set step do
   // eigenvalue 1.5 (|1 − 1.5·2/1.1| > 1). The step from every row, 2/1.6, converges.
   const Eigen::Matrix3d S{{1, 0, -0.5}, {0, 0.1, 0}, {-0.5, 0, 1}};
   const Eigen::Matrix3d K = S.inverse();
-  const QuadraticProgram qp = make_qp(K, K * Eigen::Vector3d(2, 1, 0), Eigen::Matrix3d::Identity(),
-                                      Eigen::Vector3d(1, 0.5, 0.2));
+  const QuadraticProgram qp =
+      make_qp(K, K * Eigen::Vector3d(2, 1, 0), Eigen::Matrix3d::Identity(), Eigen::Vector3d(1, 0.5, 0.2));
   const ExactSolution exact = solve_by_enumeration(qp);
   REQUIRE(exact.lambda.minCoeff() > 0);
   SECTION("plain Uzawa falls back") {
@@ -283,7 +286,8 @@ SolveResult solve_with(const HertzQp& hertz, Backend backend, double tol, std::o
 
 }  // namespace
 
-TEST_CASE("Hertz: --rho auto within 25% of the best fixed ρ, the accelerated variant under 1/4", "[validation][uzawa][rho][hertz]") {
+TEST_CASE("Hertz: --rho auto within 25% of the best fixed ρ, the accelerated variant under 1/4",
+          "[validation][uzawa][rho][hertz]") {
   const std::string patch = GENERATE(std::string(R"({"body": {"mesh": {"size": 0.2, "contact_size": 0.004}}})"),
                                      std::string(R"({"material": {"nu": 0.45}, "load": {"value": [null, -0.006]},
                                                      "body": {"mesh": {"size": 0.15, "contact_size": 0.003}}})"));
@@ -310,7 +314,8 @@ TEST_CASE("Hertz: --rho auto within 25% of the best fixed ρ, the accelerated va
   CHECK(relative_difference(accelerated.u, automatic.u) < 1e-6);
 }
 
-TEST_CASE("scenes/hertz.json: uzawa_accel needs at most 1/4 of Uzawa's iterations, same u to 1e-6", "[validation][uzawa][rho][hertz]") {
+TEST_CASE("scenes/hertz.json: uzawa_accel needs at most 1/4 of Uzawa's iterations, same u to 1e-6",
+          "[validation][uzawa][rho][hertz]") {
   const HertzQp hertz = hertz_qp("{}");
   const SolveResult plain = solve_with(hertz, Backend::Uzawa, 1e-8);
   const SolveResult accelerated = solve_with(hertz, Backend::UzawaAccelerated, 1e-8);
@@ -335,7 +340,8 @@ void collect(const nlohmann::json& value, const std::string& path, std::vector<s
 
 }  // namespace
 
-TEST_CASE("CLI: --rho 2.2x diverges and --rho 1e-6x stops at max_iterations, with only finite numbers", "[validation][uzawa][rho][cli]") {
+TEST_CASE("CLI: --rho 2.2x diverges and --rho 1e-6x stops at max_iterations, with only finite numbers",
+          "[validation][uzawa][rho][cli]") {
   const std::string backend = GENERATE(std::string("uzawa"), std::string("uzawa_accel"));
   const std::string rho = GENERATE(std::string("2.2x"), std::string("1e-6x"));
   CAPTURE(backend, rho);
