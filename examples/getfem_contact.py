@@ -1,21 +1,25 @@
 #!/usr/bin/python3
 """Bring your own model: GetFEM assembles a contact problem, contactqp solves it.
 
-A 2D plane-strain elastic block whose bottom is the parabola y = c x^2 is pressed onto the rigid
-plane y = 0 by a prescribed displacement (0, -delta) of its flat top y = H. GetFEM (Debian's
-python3-getfem) builds the mesh and assembles the stiffness; this script turns the model into
-contactqp's QP
+An elastic block whose bottom is curved is pressed onto the rigid plane "height = 0" by a
+prescribed displacement delta of its flat top, downwards:
+  --dim 2 (default): plane strain, the block x in [-1, 1], y in [0, H], bottom y = c x^2;
+  --dim 3: 3D elasticity, the block x, y in [-1, 1], z in [0, H], bottom z = c (x^2 + y^2)
+           (a paraboloid: a circular contact patch, tetrahedra).
+GetFEM (Debian's python3-getfem) builds the mesh and assembles the stiffness; this script turns
+the model into contactqp's QP
 
     minimise  1/2 u^T K u - f^T u   subject to   B u <= g
 
 over the free DOFs (the top's prescribed displacement moved into f = -K_fp u_p), with one row
-per bottom node: -u_y <= y (the initial gap to the plane along its normal (0, 1)). contactqp
-solves it with every available backend and certifies each answer. The same problem is then
-solved by GetFEM's own nodal contact brick (add_nodal_contact_with_rigid_obstacle_brick, one
-multiplier per node, Alart-Curnier, Newton) on the same mesh; the displacements must agree to
-1e-6 relative (they agree to about the backends' tolerance).
+per bottom node: -u_h <= h (h the node's height: its initial gap to the plane along the plane's
+normal). contactqp solves it with every available backend and certifies each answer. The same
+problem is then solved by GetFEM's own nodal contact brick
+(add_nodal_contact_with_rigid_obstacle_brick, one multiplier per node, Alart-Curnier, Newton) on
+the same mesh; the displacements must agree to 1e-6 relative (they agree to about the backends'
+tolerance).
 
-Run:  /usr/bin/python3 examples/getfem_contact.py [--nx 40] [--tol 1e-10]
+Run:  /usr/bin/python3 examples/getfem_contact.py [--dim 3] [--nx 40] [--tol 1e-10]
 (with the module on PYTHONPATH, e.g. PYTHONPATH=build/python, or after `cmake --install`).
 Exit status 0 when every backend converged and agrees with GetFEM, 1 otherwise.
 """
@@ -28,35 +32,46 @@ import scipy.sparse as sp
 import contactqp
 
 # The problem, in any consistent units.
-E, NU = 1.0, 0.3         # Young's modulus, Poisson's ratio (plane strain)
-WIDTH, HEIGHT = 2.0, 0.5  # the block spans x in [-1, 1]; its top is y = HEIGHT
-CURVATURE = 0.2          # bottom y = CURVATURE x^2: the gap at x = +-1 is 0.2
+E, NU = 1.0, 0.3         # Young's modulus, Poisson's ratio (plane strain in 2D)
+WIDTH, HEIGHT = 2.0, 0.5  # the block spans [-1, 1] across (x, and y in 3D); its top is at HEIGHT
+CURVATURE = 0.2          # bottom height = CURVATURE |x|^2: the gap at the side faces is 0.2
 DELTA = 0.02             # downward displacement of the top: contact over |x| < about 0.3
 AGREEMENT = 1e-6         # required ||u_contactqp - u_getfem|| / ||u_getfem||
 BOTTOM, TOP = 1, 2       # GetFEM region numbers
 
 
-def build_mesh(gf, nx, ny):
-    """A structured triangle mesh of the rectangle, regions marked, then bent: y -> y + c x^2 (1 - y/H)
-    keeps the top flat and makes the bottom the parabola (the regions follow the faces)."""
-    mesh = gf.Mesh("regular simplices", np.linspace(-WIDTH / 2, WIDTH / 2, nx + 1), np.linspace(0, HEIGHT, ny + 1))
-    mesh.set_region(BOTTOM, mesh.outer_faces_with_direction([0.0, -1.0], 0.01))
-    mesh.set_region(TOP, mesh.outer_faces_with_direction([0.0, 1.0], 0.01))
+def build_mesh(gf, dim, nx, ny):
+    """A structured simplex mesh of the block (nx elements across, ny through the height), regions
+    marked, then bent: h -> h + c |x|^2 (1 - h/H) keeps the top flat and makes the bottom the
+    parabola (2D) or paraboloid (3D); the regions follow the faces."""
+    across = np.linspace(-WIDTH / 2, WIDTH / 2, nx + 1)
+    axes = [across] * (dim - 1) + [np.linspace(0, HEIGHT, ny + 1)]
+    mesh = gf.Mesh("regular simplices", *axes)
+    down = [0.0] * (dim - 1)
+    mesh.set_region(BOTTOM, mesh.outer_faces_with_direction(down + [-1.0], 0.01))
+    mesh.set_region(TOP, mesh.outer_faces_with_direction(down + [1.0], 0.01))
     points = mesh.pts()
-    x, y = points[0], points[1]
-    mesh.set_pts(np.vstack([x, y + CURVATURE * x ** 2 * (1 - y / HEIGHT)]))
+    horizontal, height = points[:-1], points[-1]
+    bent = height + CURVATURE * (horizontal ** 2).sum(axis=0) * (1 - height / HEIGHT)
+    mesh.set_pts(np.vstack([horizontal, bent]))
     return mesh
 
 
 def elasticity_model(gf, mesh):
-    mfu = gf.MeshFem(mesh, 2)
+    dim = mesh.dim()
+    mfu = gf.MeshFem(mesh, dim)
     mfu.set_classical_fem(1)
     mim = gf.MeshIm(mesh, 2)
     model = gf.Model("real")
     model.add_fem_variable("u", mfu)
-    model.add_initialized_data("E", [E])
-    model.add_initialized_data("nu", [NU])
-    model.add_isotropic_linearized_elasticity_pstrain_brick(mim, "u", "E", "nu")
+    if dim == 2:
+        model.add_initialized_data("E", [E])
+        model.add_initialized_data("nu", [NU])
+        model.add_isotropic_linearized_elasticity_pstrain_brick(mim, "u", "E", "nu")
+    else:  # 3D: GetFEM's brick takes the Lamé coefficients
+        model.add_initialized_data("lambda", [E * NU / ((1 + NU) * (1 - 2 * NU))])
+        model.add_initialized_data("mu", [E / (2 * (1 + NU))])
+        model.add_isotropic_linearized_elasticity_brick(mim, "u", "lambda", "mu")
     return model, mfu, mim
 
 
@@ -69,56 +84,63 @@ def to_scipy(spmat):
 
 def assemble_contact_qp(gf, mesh):
     """contactqp's QP from GetFEM's stiffness: returns the QP and what is needed to rebuild the full u."""
+    dim = mesh.dim()
     model, mfu, _ = elasticity_model(gf, mesh)
     model.assembly("build_matrix")
     K_full = to_scipy(model.tangent_matrix()).tocsr()
     n = mfu.nbdof()
-    # Classical vector P1: DOFs interleaved (x, y) per node.
+    # Classical vector P1: DOFs interleaved (x, y[, z]) per node; the last one is the height.
+    vertical = dim - 1
     prescribed = np.unique(mfu.basic_dof_on_region(TOP))
     u_prescribed = np.zeros(n)
-    u_prescribed[prescribed[prescribed % 2 == 1]] = -DELTA
+    u_prescribed[prescribed[prescribed % dim == vertical]] = -DELTA
     free = np.setdiff1d(np.arange(n), prescribed)
     column = -np.ones(n, dtype=int)
     column[free] = np.arange(free.size)
     K = K_full[free][:, free]
     f = -(K_full[free][:, prescribed] @ u_prescribed[prescribed])
-    # One contact row per bottom node (its y DOF): -u_y <= y, the gap along the plane's normal.
-    bottom_y = np.unique(mfu.basic_dof_on_region(BOTTOM))
-    bottom_y = bottom_y[(bottom_y % 2 == 1) & (column[bottom_y] >= 0)]
-    gaps = mfu.basic_dof_nodes(bottom_y)[1]
-    rows = np.arange(bottom_y.size)
-    B = sp.csr_matrix((-np.ones(bottom_y.size), (rows, column[bottom_y])), shape=(bottom_y.size, free.size))
+    # One contact row per bottom node (its vertical DOF): -u_h <= h, the gap along the plane's normal.
+    bottom = np.unique(mfu.basic_dof_on_region(BOTTOM))
+    bottom = bottom[(bottom % dim == vertical) & (column[bottom] >= 0)]
+    gaps = mfu.basic_dof_nodes(bottom)[vertical]
+    rows = np.arange(bottom.size)
+    B = sp.csr_matrix((-np.ones(bottom.size), (rows, column[bottom])), shape=(bottom.size, free.size))
     qp = contactqp.QuadraticProgram(K, f, B, gaps)
     return qp, free, u_prescribed
 
 
 def getfem_reference(gf, mesh, tol):
-    """The same problem by GetFEM alone: nodal contact with the rigid obstacle y = 0 (signed
-    distance "y"), Dirichlet condition on the top with multipliers, Newton on Alart-Curnier."""
+    """The same problem by GetFEM alone: nodal contact with the rigid obstacle "height = 0" (signed
+    distance "y" in 2D, "z" in 3D), Dirichlet condition on the top with multipliers, Newton on
+    Alart-Curnier."""
+    dim = mesh.dim()
     model, mfu, mim = elasticity_model(gf, mesh)
-    model.add_initialized_data("top_displacement", [0.0, -DELTA])
+    model.add_initialized_data("top_displacement", [0.0] * (dim - 1) + [-DELTA])
     model.add_Dirichlet_condition_with_multipliers(mim, "u", mfu, TOP, "top_displacement")
-    model.add_variable("lambda_n", np.unique(mfu.basic_dof_on_region(BOTTOM)).size // 2)
+    model.add_variable("lambda_n", np.unique(mfu.basic_dof_on_region(BOTTOM)).size // dim)
     model.add_initialized_data("r", [E])
-    model.add_nodal_contact_with_rigid_obstacle_brick(mim, "u", "lambda_n", "r", BOTTOM, "y", 1)
+    model.add_nodal_contact_with_rigid_obstacle_brick(mim, "u", "lambda_n", "r", BOTTOM, "y" if dim == 2 else "z", 1)
     iterations, converged = model.solve("max_res", tol, "max_iter", 100)
     return model.variable("u"), int(iterations), bool(converged)
 
 
 def main(argv):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--nx", type=int, default=40, help="elements across the width (default 40)")
-    parser.add_argument("--ny", type=int, default=10, help="elements across the height (default 10)")
+    parser.add_argument("--dim", type=int, choices=(2, 3), default=2, help="2: plane strain (default), 3: solid")
+    parser.add_argument("--nx", type=int, help="elements across the width (default 40 in 2D, 16 in 3D)")
+    parser.add_argument("--ny", type=int, help="elements across the height (default 10 in 2D, 4 in 3D)")
     parser.add_argument("--tol", type=float, default=1e-10, help="contactqp's tolerance (default 1e-10)")
     args = parser.parse_args(argv)
 
     import getfem as gf
     gf.util_trace_level(0)
     gf.util_warning_level(0)
-    mesh = build_mesh(gf, args.nx, args.ny)
+    nx = args.nx or (40 if args.dim == 2 else 16)
+    ny = args.ny or (10 if args.dim == 2 else 4)
+    mesh = build_mesh(gf, args.dim, nx, ny)
     qp, free, u_prescribed = assemble_contact_qp(gf, mesh)
     u_getfem, newton_iterations, newton_converged = getfem_reference(gf, mesh, 1e-12)
-    print(f"GetFEM {gf.getfem_env('release')}: {mesh.nbpts()} nodes, QP with {qp.n_dofs} DOFs and "
+    print(f"GetFEM {gf.getfem_env('release')}, {args.dim}D: {mesh.nbpts()} nodes, QP with {qp.n_dofs} DOFs and "
           f"{qp.n_constraints} contact rows; nodal contact brick: Newton {newton_iterations} iterations"
           f"{'' if newton_converged else ' (NOT converged)'}")
 

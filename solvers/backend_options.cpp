@@ -52,13 +52,4 @@ int parse_integer(const std::string& text, const std::string& field) {
   return static_cast<int>(value);
 }
 
-std::string short_number(double x) {
-  std::ostringstream out;
-  out.precision(4);
-  out << x;
-  return out.str();
-}
-
-double inf_norm(const VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
-
 }  // namespace contactqp::detail

@@ -1,6 +1,6 @@
 // Backend options given as text (--backend-option key=value, a scene's solver.options): which
-// keys a backend reads, and the strict parsing of their values (plus two small helpers the
-// backends' messages share).
+// keys a backend reads, and the strict parsing of their values (the norms and number formats the
+// backends' messages share come with it, from src/qp/norms.hpp and number_format.hpp).
 //
 // A key may be addressed to one backend by prefixing its name, "ipopt.print_level": `compare`
 // runs several backends from one command line, and each reads only its own keys and the
@@ -10,6 +10,8 @@
 #include <map>
 #include <string>
 
+#include "../src/qp/norms.hpp"
+#include "../src/qp/number_format.hpp"
 #include "contactqp/qp.hpp"
 
 namespace contactqp::detail {
@@ -30,11 +32,5 @@ std::string option_field(const std::string& key);
 // The whole text must be a finite number (an integer); InputError naming `field` otherwise.
 double parse_number(const std::string& text, const std::string& field);
 int parse_integer(const std::string& text, const std::string& field);
-
-// A number in a message, to four significant digits: "1.218e-08".
-std::string short_number(double x);
-
-// ‖v‖∞, 0 for an empty vector.
-double inf_norm(const VectorXd& v);
 
 }  // namespace contactqp::detail

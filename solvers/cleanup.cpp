@@ -17,14 +17,13 @@
 #include <cmath>
 #include <vector>
 
+#include "../src/qp/norms.hpp"
 #include "backends.hpp"
 #include "cleanup.hpp"
 #include "contactqp/certificate.hpp"
 
 namespace contactqp::detail {
 namespace {
-
-double inf_norm_of(const VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
 
 using RowMajorMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
@@ -47,9 +46,9 @@ void zero_separated_multipliers(const QuadraticProgram& qp, SolveResult& result,
   const VectorXd Ku = qp.K * u;
   const VectorXd Btl = qp.B.transpose() * lambda;
   VectorXd r = Ku - qp.f + Btl;
-  const double fixed_force = std::max(inf_norm_of(qp.f), inf_norm_of(Ku));
-  const double force = std::max(fixed_force, inf_norm_of(Btl));
-  const double bound = std::max(tol * fixed_force, force > 0 ? inf_norm_of(r) * fixed_force / force : 0.0);
+  const double fixed_force = std::max(inf_norm(qp.f), inf_norm(Ku));
+  const double force = std::max(fixed_force, inf_norm(Btl));
+  const double bound = std::max(tol * fixed_force, force > 0 ? inf_norm(r) * fixed_force / force : 0.0);
   const RowMajorMatrix B = qp.B;
   std::sort(rows.begin(), rows.end(), [&](int a, int b) { return lambda[a] < lambda[b]; });
   int zeroed = 0;

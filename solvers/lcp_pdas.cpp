@@ -5,6 +5,7 @@
 #include <cmath>
 #include <set>
 
+#include "../src/qp/norms.hpp"
 #include "lcp.hpp"
 
 // LAPACK's Cholesky (OpenBLAS on Debian): S_AA of a thousand rows takes ~0.1 s with Eigen's
@@ -17,8 +18,6 @@ void dpotrs_(const char* uplo, const int* n, const int* nrhs, const double* A, c
 
 namespace contactqp::detail {
 namespace {
-
-double inf_norm(const VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
 
 VectorXd gather(const VectorXd& v, const std::vector<int>& index) {
   VectorXd out(index.size());

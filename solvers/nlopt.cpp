@@ -17,6 +17,7 @@
 #include <limits>
 #include <vector>
 
+#include "../src/qp/norms.hpp"
 #include "backend_options.hpp"
 #include "backends.hpp"
 #include "contactqp/certificate.hpp"
@@ -24,8 +25,6 @@
 
 namespace contactqp::detail {
 namespace {
-
-double relative(double x, double scale) { return scale > 0 ? x / scale : x; }
 
 // The algorithms on offer: gradient-based methods that honour bound constraints.
 const std::pair<NloptOptions::Algorithm, const char*> kAlgorithmNames[] = {

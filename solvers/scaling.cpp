@@ -2,12 +2,11 @@
 
 #include <cmath>
 
+#include "../src/qp/norms.hpp"
 #include "contactqp/linear_solver.hpp"
 
 namespace contactqp::detail {
 namespace {
-
-double inf_norm(const VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
 
 // Diagnostics that carry units: steps ρ scale like κ, eigenvalues of S = B K⁻¹ Bᵀ like 1/κ.
 const char* const kStepDiagnostics[] = {"rho", "rho_max", "rho_opt"};

@@ -2,21 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
+#include "../src/qp/norms.hpp"
+#include "../src/qp/number_format.hpp"
 #include "contactqp/certificate.hpp"
 
 namespace contactqp::detail {
 namespace {
-
-double inf_norm(const VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
-
-std::string format(double x) {
-  std::ostringstream out;
-  out.precision(4);
-  out << x;
-  return out.str();
-}
 
 // How many iterations without progress (DivergenceGuard) count as not converging, at the
 // automatic step or above.
@@ -97,18 +89,18 @@ std::string closing_message(const SolveOptions& options, UzawaVariant variant, c
   const double unit = options.uzawa.rho_unit;
   const bool known = std::isfinite(step.rho_max);
   const std::string rho =
-      "ρ = " + format(step.rho * unit) + (known ? " (" + format(step.rho / step.rho_max) + " ρ_max)" : "");
-  const std::string rho_max = known ? "ρ_max = 2/λ_max(S) ≈ " + format(step.rho_max * unit) : "no ρ_max (S = 0)";
+      "ρ = " + short_number(step.rho * unit) + (known ? " (" + short_number(step.rho / step.rho_max) + " ρ_max)" : "");
+  const std::string rho_max = known ? "ρ_max = 2/λ_max(S) ≈ " + short_number(step.rho_max * unit) : "no ρ_max (S = 0)";
   const std::string note =
       fell_back ? "; the step from the violated rows did not converge, so ρ was re-chosen from every row" : "";
   switch (run.status) {
     case Status::Converged:
-      return "converged: relative change of λ and primal violation below " + format(options.tol) + note;
+      return "converged: relative change of λ and primal violation below " + short_number(options.tol) + note;
     case Status::MaxIterations:
       return "stopped after " + std::to_string(run.iterations) + " iterations at relative residual " +
-             format(run.residual) + " (best " + format(run.best_residual) + ", tol " + format(options.tol) + ") with " +
-             rho + "; " + (known ? "a larger ρ (up to " + rho_max + ")" : "a larger ρ") +
-             " or more iterations may help" + note;
+             short_number(run.residual) + " (best " + short_number(run.best_residual) + ", tol " +
+             short_number(options.tol) + ") with " + rho + "; " +
+             (known ? "a larger ρ (up to " + rho_max + ")" : "a larger ρ") + " or more iterations may help" + note;
     case Status::Diverged:
       return "diverged after " + std::to_string(run.iterations) + " iterations: " + rho + " is too large (" + rho_max +
              (variant == UzawaVariant::Accelerated ? "; the accelerated iteration needs about ρ ≤ ρ_max/2" : "") +

@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "../../src/qp/number_format.hpp"
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/io.hpp"
@@ -51,12 +52,6 @@ struct Mesh {
   VectorXd lambda_reference;
 };
 
-std::string number(double x) {
-  std::ostringstream out;
-  out << std::setprecision(10) << x;
-  return out.str();
-}
-
 SolveOptions options_for(const Mesh& mesh, Backend backend, double tol, int max_iterations) {
   SolveOptions options;
   options.backend = backend;
@@ -75,9 +70,10 @@ std::string run_row(const Mesh& mesh, const SolveOptions& options, int* iteratio
   const double rho = r.diagnostics.count("rho") ? r.diagnostics.at("rho") : 0.0;
   const double rho_max = r.diagnostics.count("rho_max") ? r.diagnostics.at("rho_max") : 0.0;
   const double error = (r.lambda - mesh.lambda_reference).norm() / mesh.lambda_reference.norm();
-  return number(rho) + "," + number(rho_max > 0 ? rho / rho_max : 0.0) + "," + number(mesh.contact_size) + "," +
-         std::to_string(mesh.qp.n_dofs()) + "," + to_string(options.backend) + "," + std::to_string(r.iterations) +
-         "," + number(seconds) + "," + to_string(r.status) + "," + number(error) + "\n";
+  return csv_number(rho) + "," + csv_number(rho_max > 0 ? rho / rho_max : 0.0) + "," + csv_number(mesh.contact_size) +
+         "," + std::to_string(mesh.qp.n_dofs()) + "," + to_string(options.backend) + "," +
+         std::to_string(r.iterations) + "," + csv_number(seconds) + "," + to_string(r.status) + "," +
+         csv_number(error) + "\n";
 }
 
 // Extreme eigenvalues of the principal block of the dense S on `rows`.
@@ -118,7 +114,7 @@ int run(const Settings& settings) {
     nlohmann::json scene_json = base_scene;
     scene_json["body"]["mesh"]["contact_size"] = h;
     scene_json["body"]["mesh"]["size"] = settings.far_field_ratio * h;
-    Model model = build_model(parse_scene(scene_json.dump(), settings.scene + " (contact_size " + number(h) + ")"));
+    Model model = build_model(parse_scene(scene_json.dump(), settings.scene + " (contact_size " + csv_number(h) + ")"));
     Mesh mesh;
     mesh.contact_size = h;
     mesh.qp = assemble_qp(model);
@@ -176,18 +172,19 @@ int run(const Settings& settings) {
     const auto [a_min, a_max] = block_spectrum(S, active);
     const auto [all_min, all_max] = block_spectrum(S, all);
     const auto& d = reference.diagnostics;
-    meshes_csv +=
-        number(h) + "," + number(settings.far_field_ratio * h) + "," + std::to_string(qp.n_dofs()) + "," +
-        std::to_string(qp.n_constraints()) + "," + std::to_string(working.size()) + "," +
-        std::to_string(active.size()) + "," + number(d.at("lambda_min_S")) + "," + number(d.at("lambda_max_S")) + "," +
-        number(d.at("spectrum_rows")) + "," + number(d.at("spectrum_solves")) + "," +
-        number(reference.timings.get("spectrum")) + "," + number(w_min) + "," + number(w_max) + "," + number(a_min) +
-        "," + number(a_max) + "," + number(all_min) + "," + number(all_max) + "," + number(d.at("rho_max")) + "," +
-        number(d.at("rho_opt")) + "," + std::to_string(cap) + "," + number(factorize_seconds) + "," +
-        number(one_solve_seconds) + "," + std::to_string(reference.iterations) + "," + number(reference_diff) + "\n";
+    meshes_csv += csv_number(h) + "," + csv_number(settings.far_field_ratio * h) + "," + std::to_string(qp.n_dofs()) +
+                  "," + std::to_string(qp.n_constraints()) + "," + std::to_string(working.size()) + "," +
+                  std::to_string(active.size()) + "," + csv_number(d.at("lambda_min_S")) + "," +
+                  csv_number(d.at("lambda_max_S")) + "," + csv_number(d.at("spectrum_rows")) + "," +
+                  csv_number(d.at("spectrum_solves")) + "," + csv_number(reference.timings.get("spectrum")) + "," +
+                  csv_number(w_min) + "," + csv_number(w_max) + "," + csv_number(a_min) + "," + csv_number(a_max) +
+                  "," + csv_number(all_min) + "," + csv_number(all_max) + "," + csv_number(d.at("rho_max")) + "," +
+                  csv_number(d.at("rho_opt")) + "," + std::to_string(cap) + "," + csv_number(factorize_seconds) + "," +
+                  csv_number(one_solve_seconds) + "," + std::to_string(reference.iterations) + "," +
+                  csv_number(reference_diff) + "\n";
     std::cout << "h = " << h << ": " << qp.n_dofs() << " DOFs, " << qp.n_constraints() << " candidates, "
               << active.size() << " active; uzawa auto " << auto_iterations << " iterations, best of sweep "
-              << best_plain << " at " << number(best_fraction) << " rho_max, uzawa_accel auto " << auto_accelerated
+              << best_plain << " at " << csv_number(best_fraction) << " rho_max, uzawa_accel auto " << auto_accelerated
               << " (" << std::fixed << std::setprecision(1) << total.seconds() << std::defaultfloat << " s so far)"
               << std::endl;
   }

@@ -26,6 +26,7 @@
 #include <map>
 #include <sstream>
 
+#include "../../src/qp/number_format.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"
@@ -212,13 +213,8 @@ std::string csv_field(const std::string& text) {
   return quoted + "\"";
 }
 
-std::string number(double x) {
-  if (!std::isfinite(x)) return "";
-  std::ostringstream out;
-  out.precision(6);
-  out << x;
-  return out.str();
-}
+// A CSV field: six digits, empty for NaN or Inf.
+std::string csv_field(double x) { return csv_number(x, 6); }
 
 double report_number(const Report& report, const std::string& key) {
   auto it = report.find(key);
@@ -315,7 +311,7 @@ int run(const Arguments& arguments) {
     }
     ::malloc_trim(0);  // the mesher's freed memory goes back before the children inherit the heap
     std::cout << (item.source.empty() ? "" : "level ") << k << ": " << qp.n_dofs() << " DOFs, " << qp.n_constraints()
-              << " candidates, mesh " << number(mesh_seconds) << " s\n";
+              << " candidates, mesh " << csv_field(mesh_seconds) << " s\n";
 
     struct Row {
       Backend backend;
@@ -337,8 +333,8 @@ int run(const Arguments& arguments) {
         row.run = fork_and_solve(qp, options, row.vector_path, arguments.time_cap_seconds);
         if (row.run.killed) {
           row.status = "time_cap";
-          row.reason = "killed after the cap of " + number(arguments.time_cap_seconds) + " s";
-          skip_reason[backend] = "exceeded the cap of " + number(arguments.time_cap_seconds) + " s at " +
+          row.reason = "killed after the cap of " + csv_field(arguments.time_cap_seconds) + " s";
+          skip_reason[backend] = "exceeded the cap of " + csv_field(arguments.time_cap_seconds) + " s at " +
                                  std::to_string(qp.n_dofs()) + " DOFs";
         } else if (row.run.signal) {
           row.status = "crashed";
@@ -351,10 +347,10 @@ int run(const Arguments& arguments) {
         }
       }
       std::cout << "  " << to_string(backend) << ": " << row.status << ", "
-                << number(report_number(row.run.report, "phase:total")) << " s (linear "
-                << number(report_number(row.run.report, "linear_total_seconds")) << " s), iterations "
+                << csv_field(report_number(row.run.report, "phase:total")) << " s (linear "
+                << csv_field(report_number(row.run.report, "linear_total_seconds")) << " s), iterations "
                 << report_text(row.run.report, "iterations") << ", peak "
-                << number(report_number(row.run.report, "peak_rss_mb")) << " MiB\n";
+                << csv_field(report_number(row.run.report, "peak_rss_mb")) << " MiB\n";
       rows.push_back(row);
     }
 
@@ -377,18 +373,18 @@ int run(const Arguments& arguments) {
       const double total = report_number(r, "phase:total");
       const double linear_total = report_number(r, "linear_total_seconds");
       std::ostringstream line;
-      line << csv_field(k) << ',' << qp.n_dofs() << ',' << qp.n_constraints() << ',' << number(mesh_seconds) << ','
-           << number(assemble_seconds) << ',' << to_string(row.backend) << ',' << row.status << ','
-           << report_text(r, "iterations") << ',' << number(report_number(r, "phase:factorize")) << ','
-           << number(report_number(r, "phase:condense")) << ',' << number(report_number(r, "phase:iterate")) << ','
-           << number(report_number(r, "phase:recover")) << ',' << number(report_number(r, "phase:solve")) << ','
-           << number(total) << ',' << number(report_number(r, "linear_factorize_seconds")) << ','
-           << number(report_number(r, "linear_solve_seconds")) << ',' << number(linear_total) << ','
-           << number(total / linear_total) << ',' << number(report_number(r, "peak_rss_mb")) << ','
-           << number(report_number(r, "linear_peak_rss_mb")) << ',' << number(report_number(r, "baseline_rss_mb"))
-           << ',' << number(row.run.maxrss_mb) << ',' << number(report_number(r, "kkt_max")) << ','
-           << number(report_number(r, "relative_gap")) << ',' << number(diff_u) << ',' << number(diff_lambda) << ','
-           << report_text(r, "ordering") << ',' << report_text(r, "factor_nonzeros") << ','
+      line << csv_field(k) << ',' << qp.n_dofs() << ',' << qp.n_constraints() << ',' << csv_field(mesh_seconds) << ','
+           << csv_field(assemble_seconds) << ',' << to_string(row.backend) << ',' << row.status << ','
+           << report_text(r, "iterations") << ',' << csv_field(report_number(r, "phase:factorize")) << ','
+           << csv_field(report_number(r, "phase:condense")) << ',' << csv_field(report_number(r, "phase:iterate"))
+           << ',' << csv_field(report_number(r, "phase:recover")) << ',' << csv_field(report_number(r, "phase:solve"))
+           << ',' << csv_field(total) << ',' << csv_field(report_number(r, "linear_factorize_seconds")) << ','
+           << csv_field(report_number(r, "linear_solve_seconds")) << ',' << csv_field(linear_total) << ','
+           << csv_field(total / linear_total) << ',' << csv_field(report_number(r, "peak_rss_mb")) << ','
+           << csv_field(report_number(r, "linear_peak_rss_mb")) << ',' << csv_field(report_number(r, "baseline_rss_mb"))
+           << ',' << csv_field(row.run.maxrss_mb) << ',' << csv_field(report_number(r, "kkt_max")) << ','
+           << csv_field(report_number(r, "relative_gap")) << ',' << csv_field(diff_u) << ',' << csv_field(diff_lambda)
+           << ',' << report_text(r, "ordering") << ',' << report_text(r, "factor_nonzeros") << ','
            << csv_field(report_text(r, "phases")) << ',' << csv_field(row.reason) << '\n';
       csv += line.str();
       if (!row.vector_path.empty()) std::remove(row.vector_path.c_str());

@@ -29,6 +29,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "../../src/qp/norms.hpp"
+#include "../../src/qp/number_format.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"
@@ -69,36 +71,13 @@ const char* const kMeshesHeader =
     "error_l2,l2_difference_to_finest,peer_msh,peer_same_mesh,peer_nodes,peer_triangles,peer_dofs,peer_constraints,"
     "peer_max_node_distance\n";
 
-// A number for the CSV: %.10g, and an empty field when there is none (never NaN or Inf).
-std::string number(double x) {
-  if (!std::isfinite(x)) return "";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.10g", x);
-  return buffer;
-}
-
-std::string short_number(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", x);
-  return buffer;
-}
-
 std::string quoted(const std::string& text) {
   std::string out = "\"";
   for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
   return out + "\"";
 }
 
-std::string percent(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%+.2f%%", 100 * x);
-  return buffer;
-}
-
-double relative_difference(const VectorXd& a, const VectorXd& b) {
-  const double scale = b.norm();
-  return scale > 0 ? (a - b).norm() / scale : (a - b).norm();
-}
+std::string percent(double x) { return format("%+.2f%%", 100 * x); }
 
 constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
 
@@ -222,9 +201,9 @@ Run Study::run_one(const MeshStudy& mesh, Backend backend, double tol) {
 
 void Study::progress(const MeshStudy& mesh, const Run& run) {
   std::string line = "tradeoff [" + std::to_string(runs_done_) + "/" + std::to_string(runs_total_) + ", " +
-                     short_number(clock_.seconds()) + " s] h " + short_number(mesh.contact_size) + " (" +
-                     std::to_string(mesh.qp.n_dofs()) + " DOFs) " + to_string(run.backend) + " tol " +
-                     short_number(run.tol) + ": " + status_name(run);
+                     number(clock_.seconds()) + " s] h " + number(mesh.contact_size) + " (" +
+                     std::to_string(mesh.qp.n_dofs()) + " DOFs) " + to_string(run.backend) + " tol " + number(run.tol) +
+                     ": " + status_name(run);
   if (run.skipped) {
     line += " (" + run.message + ")";
   } else {
@@ -243,7 +222,7 @@ void Study::run_mesh(MeshStudy& mesh, int mesh_index) {
   nlohmann::json scene_json = base_scene_;
   scene_json["body"]["mesh"]["contact_size"] = h;
   scene_json["body"]["mesh"]["size"] = mesh.size;
-  mesh.model = build_model(parse_scene(scene_json.dump(), settings_.scene + " (contact_size " + short_number(h) + ")"));
+  mesh.model = build_model(parse_scene(scene_json.dump(), settings_.scene + " (contact_size " + number(h) + ")"));
   // Assembly is cheap and noisy: the fastest of a few, like the runs.
   for (int k = 0; k < 3; ++k) {
     Stopwatch clock;
@@ -261,16 +240,16 @@ void Study::run_mesh(MeshStudy& mesh, int mesh_index) {
     factor.solve(mesh.qp.f);
     mesh.one_solve_seconds = std::min(mesh.one_solve_seconds, clock.seconds());
   }
-  std::cerr << "tradeoff mesh " << mesh_index + 1 << "/" << sizes_.size() << ": contact_size " << short_number(h)
-            << ", size " << short_number(mesh.size) << ": " << mesh.model.mesh.n_nodes() << " nodes, "
-            << mesh.qp.n_dofs() << " DOFs, " << mesh.qp.n_constraints() << " candidates; mesh "
-            << short_number(mesh.model.timings.get("mesh")) << " s, assembly " << short_number(mesh.assemble_seconds)
-            << " s, factorisation " << short_number(mesh.factorize_seconds) << " s, one solve "
-            << short_number(mesh.one_solve_seconds) << " s" << std::endl;
+  std::cerr << "tradeoff mesh " << mesh_index + 1 << "/" << sizes_.size() << ": contact_size " << number(h) << ", size "
+            << number(mesh.size) << ": " << mesh.model.mesh.n_nodes() << " nodes, " << mesh.qp.n_dofs() << " DOFs, "
+            << mesh.qp.n_constraints() << " candidates; mesh " << number(mesh.model.timings.get("mesh"))
+            << " s, assembly " << number(mesh.assemble_seconds) << " s, factorisation "
+            << number(mesh.factorize_seconds) << " s, one solve " << number(mesh.one_solve_seconds) << " s"
+            << std::endl;
 
   if (!settings_.peer_meshes.empty()) {
     const std::string msh =
-        (std::filesystem::absolute(settings_.peer_meshes) / ("mesh_o1_cs" + short_number(h) + ".msh")).string();
+        (std::filesystem::absolute(settings_.peer_meshes) / ("mesh_o1_cs" + number(h) + ".msh")).string();
     if (std::filesystem::exists(msh))
       mesh.peer = bench::check_peer_mesh(scene_json, msh, mesh.model.mesh);
     else
@@ -295,8 +274,8 @@ void Study::run_mesh(MeshStudy& mesh, int mesh_index) {
         run.contact = summarize_contact(mesh.model, mesh.qp, run.u, run.lambda);
         run.hertz = compare_with_hertz(mesh.model, run.contact);
         if (run.seconds > settings_.time_cap_seconds) {
-          cap_reason = "time cap: tol " + short_number(tol) + " took " + short_number(run.seconds) + " s > " +
-                       short_number(settings_.time_cap_seconds) + " s on contact_size " + short_number(h);
+          cap_reason = "time cap: tol " + number(tol) + " took " + number(run.seconds) + " s > " +
+                       number(settings_.time_cap_seconds) + " s on contact_size " + number(h);
           capped_[key] = cap_reason;
         }
       }
@@ -309,8 +288,8 @@ void Study::run_mesh(MeshStudy& mesh, int mesh_index) {
   if (mesh.reference >= 0) {
     const Run& ref = mesh.runs[mesh.reference];
     std::cerr << "tradeoff mesh " << mesh_index + 1 << ": reference " << to_string(ref.backend) << " at tol "
-              << short_number(ref.tol) << " (relative gap " << short_number(ref.certificate.relative_gap) << ", KKT "
-              << short_number(ref.certificate.kkt_max()) << ")" << std::endl;
+              << number(ref.tol) << " (relative gap " << number(ref.certificate.relative_gap) << ", KKT "
+              << number(ref.certificate.kkt_max()) << ")" << std::endl;
   } else {
     std::cerr << "tradeoff mesh " << mesh_index + 1 << ": no converged run, no reference" << std::endl;
   }
@@ -324,18 +303,19 @@ std::string Study::runs_rows(const MeshStudy& mesh) const {
     const bool solved = !r.skipped;
     const Certificate& c = r.certificate;
     const auto hertz = [&](double HertzComparison::*field) {
-      return solved && r.hertz ? number((*r.hertz).*field) : "";
+      return solved && r.hertz ? csv_number((*r.hertz).*field) : "";
     };
-    const auto solved_number = [&](double x) { return solved ? number(x) : ""; };
-    rows += number(mesh.contact_size) + "," + std::to_string(mesh.qp.n_dofs()) + "," + to_string(r.backend) + "," +
-            number(r.tol) + "," + status_name(r) + "," + (solved ? std::to_string(r.iterations) : "") + "," +
+    const auto solved_number = [&](double x) { return solved ? csv_number(x) : ""; };
+    rows += csv_number(mesh.contact_size) + "," + std::to_string(mesh.qp.n_dofs()) + "," + to_string(r.backend) + "," +
+            csv_number(r.tol) + "," + status_name(r) + "," + (solved ? std::to_string(r.iterations) : "") + "," +
             solved_number(r.seconds) + "," + (solved ? std::to_string(r.repeats) : "") + "," +
             solved_number(r.seconds / mesh.one_solve_seconds) + "," + solved_number(c.kkt_max()) + "," +
-            (solved && c.dual_available ? number(c.relative_gap) : "") + "," + solved_number(r.contact.total_force) +
-            "," + solved_number(r.contact.half_width) + "," + solved_number(r.contact.max_pressure) + "," +
-            hertz(&HertzComparison::error_half_width) + "," + hertz(&HertzComparison::error_max_pressure) + "," +
-            hertz(&HertzComparison::error_l2) + "," + (solved && ref ? number(relative_difference(r.u, ref->u)) : "") +
-            "," + (solved && ref ? number(relative_difference(r.lambda, ref->lambda)) : "") + "," +
+            (solved && c.dual_available ? csv_number(c.relative_gap) : "") + "," +
+            solved_number(r.contact.total_force) + "," + solved_number(r.contact.half_width) + "," +
+            solved_number(r.contact.max_pressure) + "," + hertz(&HertzComparison::error_half_width) + "," +
+            hertz(&HertzComparison::error_max_pressure) + "," + hertz(&HertzComparison::error_l2) + "," +
+            (solved && ref ? csv_number(relative_difference(r.u, ref->u)) : "") + "," +
+            (solved && ref ? csv_number(relative_difference(r.lambda, ref->lambda)) : "") + "," +
             (static_cast<int>(i) == mesh.reference ? "1" : "0") + "," + quoted(r.message) + "\n";
   }
   return rows;
@@ -354,23 +334,23 @@ std::string Study::mesh_row(const MeshStudy& mesh, double difference_to_finest) 
         const double dl = relative_difference(r.lambda, ref->lambda);
         spread_lambda = std::isfinite(spread_lambda) ? std::max(spread_lambda, dl) : dl;
       }
-  const auto of_ref = [&](double x) { return ref ? number(x) : ""; };
+  const auto of_ref = [&](double x) { return ref ? csv_number(x) : ""; };
   const auto hertz = [&](double HertzComparison::*field) {
-    return ref && ref->hertz ? number((*ref->hertz).*field) : "";
+    return ref && ref->hertz ? csv_number((*ref->hertz).*field) : "";
   };
   std::string row =
-      number(mesh.contact_size) + "," + number(mesh.size) + "," + std::to_string(mesh.model.mesh.n_nodes()) + "," +
-      std::to_string(mesh.model.mesh.n_elements()) + "," + std::to_string(mesh.qp.n_dofs()) + "," +
-      std::to_string(mesh.qp.n_constraints()) + "," + number(mesh.model.timings.get("mesh")) + "," +
-      number(mesh.model.timings.get("model")) + "," + number(mesh.assemble_seconds) + "," +
-      number(mesh.factorize_seconds) + "," + number(mesh.one_solve_seconds) + "," +
+      csv_number(mesh.contact_size) + "," + csv_number(mesh.size) + "," + std::to_string(mesh.model.mesh.n_nodes()) +
+      "," + std::to_string(mesh.model.mesh.n_elements()) + "," + std::to_string(mesh.qp.n_dofs()) + "," +
+      std::to_string(mesh.qp.n_constraints()) + "," + csv_number(mesh.model.timings.get("mesh")) + "," +
+      csv_number(mesh.model.timings.get("model")) + "," + csv_number(mesh.assemble_seconds) + "," +
+      csv_number(mesh.factorize_seconds) + "," + csv_number(mesh.one_solve_seconds) + "," +
       (ref ? to_string(ref->backend) : "") + "," + of_ref(ref ? ref->tol : kNone) + "," +
       of_ref(ref ? ref->certificate.relative_gap : kNone) + "," + of_ref(ref ? ref->certificate.kkt_max() : kNone) +
-      "," + number(spread_u) + "," + number(spread_lambda) + "," + of_ref(ref ? ref->contact.total_force : kNone) +
-      "," + of_ref(ref ? ref->contact.half_width : kNone) + "," + of_ref(ref ? ref->contact.max_pressure : kNone) +
-      "," + (ref ? std::to_string(ref->contact.contact_nodes) : "") + "," + hertz(&HertzComparison::error_half_width) +
-      "," + hertz(&HertzComparison::error_max_pressure) + "," + hertz(&HertzComparison::error_l2) + "," +
-      number(difference_to_finest) + ",";
+      "," + csv_number(spread_u) + "," + csv_number(spread_lambda) + "," +
+      of_ref(ref ? ref->contact.total_force : kNone) + "," + of_ref(ref ? ref->contact.half_width : kNone) + "," +
+      of_ref(ref ? ref->contact.max_pressure : kNone) + "," + (ref ? std::to_string(ref->contact.contact_nodes) : "") +
+      "," + hertz(&HertzComparison::error_half_width) + "," + hertz(&HertzComparison::error_max_pressure) + "," +
+      hertz(&HertzComparison::error_l2) + "," + csv_number(difference_to_finest) + ",";
   if (mesh.peer) {
     const bench::PeerMeshCheck& p = *mesh.peer;
     const bool same = p.nodes == mesh.model.mesh.n_nodes() && p.triangles == mesh.model.mesh.n_elements() &&
@@ -378,7 +358,7 @@ std::string Study::mesh_row(const MeshStudy& mesh, double difference_to_finest) 
                       p.max_node_distance <= 1e-12 * mesh.model.scene.body.radius;
     row += quoted(std::filesystem::path(p.file).filename().string()) + "," + (same ? "1" : "0") + "," +
            std::to_string(p.nodes) + "," + std::to_string(p.triangles) + "," + std::to_string(p.dofs) + "," +
-           std::to_string(p.constraints) + "," + number(p.max_node_distance);
+           std::to_string(p.constraints) + "," + csv_number(p.max_node_distance);
   } else {
     row += ",,,,,,";
   }
@@ -455,9 +435,8 @@ int Study::run() {
        "duality gap| (ties: smallest KKT residual)"},
       {"seconds", clock_.seconds()}};
   write_file_atomically(context_path, bench::context_json("tradeoff", extra.dump()));
-  std::cerr << "tradeoff: " << runs_done_ << " runs on " << meshes.size() << " meshes in "
-            << short_number(clock_.seconds()) << " s; wrote " << runs_path << ", " << meshes_path << ", "
-            << context_path << std::endl;
+  std::cerr << "tradeoff: " << runs_done_ << " runs on " << meshes.size() << " meshes in " << number(clock_.seconds())
+            << " s; wrote " << runs_path << ", " << meshes_path << ", " << context_path << std::endl;
   return 0;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "../qp/number_format.hpp"
 #include "contactqp/io.hpp"
 
 namespace CLI {
@@ -48,9 +49,6 @@ void add_backend_options(const std::vector<std::string>& pairs, SolveOptions& op
 // empty paths are not asked for).
 void check_distinct_outputs(const std::string& scene_path,
                             const std::vector<std::pair<std::string, std::string>>& outputs);
-
-// printf into a std::string (one table line; at most 511 characters).
-std::string format(const char* pattern, ...) __attribute__((format(printf, 1, 2)));
 
 // The human summary printed on stdout after a solve.
 std::string summary_table(const RunReport& report);

@@ -1,22 +1,12 @@
 // The human summary of one solve: what was solved, how it ended, the certificate, the
 // contact result against Hertz, and where the time went.
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <string>
 
 #include "commands.hpp"
 
 namespace contactqp::cli {
-
-std::string format(const char* pattern, ...) {
-  char buffer[512];
-  va_list args;
-  va_start(args, pattern);
-  std::vsnprintf(buffer, sizeof buffer, pattern, args);
-  va_end(args);
-  return buffer;
-}
 
 namespace {
 

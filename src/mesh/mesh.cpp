@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "../fe/shape_functions.hpp"
+#include "../qp/number_format.hpp"
 
 namespace contactqp {
 namespace {
@@ -106,8 +107,6 @@ double jacobian_10node(const Eigen::Vector3d* x, double xi, double eta, double z
   for (int i = 0; i < 10; ++i) J += dN.col(i) * x[i].transpose();
   return J.determinant();
 }
-
-std::string number(double x) { return std::to_string(x); }
 
 }  // namespace
 

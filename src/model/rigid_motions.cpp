@@ -15,8 +15,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <numeric>
-#include <sstream>
 
+#include "../qp/number_format.hpp"
 #include "contactqp/errors.hpp"
 #include "model_parts.hpp"
 
@@ -52,18 +52,13 @@ std::vector<int> connected_parts(const Mesh& mesh, int& n_parts) {
 }
 
 // x for a message: six digits, and 0 for round-off (below 1e-9 of `scale`).
-std::string number(double x, double scale) {
-  std::ostringstream out;
-  out.precision(6);
-  out << (std::abs(x) <= 1e-9 * scale ? 0.0 : x);
-  return out.str();
-}
+std::string cleaned_number(double x, double scale) { return number(std::abs(x) <= 1e-9 * scale ? 0.0 : x); }
 
 std::string direction_name(const Eigen::Vector2d& d) {
   if (std::abs(d.y()) <= 1e-9 * std::abs(d.x())) return "x";
   if (std::abs(d.x()) <= 1e-9 * std::abs(d.y())) return "y";
   const Eigen::Vector2d unit = d.normalized();
-  return "along (" + number(unit.x(), 1) + ", " + number(unit.y(), 1) + ")";
+  return "along (" + cleaned_number(unit.x(), 1) + ", " + cleaned_number(unit.y(), 1) + ")";
 }
 
 // The free motions, in words, from a basis of the null space (columns (a, b, c) of
@@ -83,7 +78,7 @@ FreeMotions describe(const Eigen::MatrixXd& null, const Eigen::Vector2d& centre,
       const Eigen::Vector2d across = Eigen::Vector2d(-d.y(), d.x()).normalized();
       point += (centre - point).dot(across) * across;
     }
-    return "rotation about (" + number(point.x(), extent) + ", " + number(point.y(), extent) + ")";
+    return "rotation about (" + cleaned_number(point.x(), extent) + ", " + cleaned_number(point.y(), extent) + ")";
   };
   const std::string hold_x =
       "prescribe u_x on some boundary (e.g. \"value\": [0, ...] instead of [null, ...]), or model half of a "
@@ -116,7 +111,8 @@ std::string vector_text(const Eigen::Vector3d& d) {
   const Eigen::Vector3d unit = d.normalized();
   for (int c = 0; c < 3; ++c)
     if (std::abs(std::abs(unit[c]) - 1) < 1e-9) return std::string(1, "xyz"[c]);
-  return "(" + number(unit.x(), 1) + ", " + number(unit.y(), 1) + ", " + number(unit.z(), 1) + ")";
+  return "(" + cleaned_number(unit.x(), 1) + ", " + cleaned_number(unit.y(), 1) + ", " + cleaned_number(unit.z(), 1) +
+         ")";
 }
 
 // The free motions of a 3D part, in words, from a basis of the null space (columns (t, ω) of
@@ -132,8 +128,8 @@ std::string describe_3d(const Eigen::MatrixXd& null, const Eigen::Vector3d& cent
     } else {
       // t + w × y = w × (y − p) for p = (w × t)/|w|² when t ⟂ w: a rotation about the axis through x_c + p.
       const Eigen::Vector3d p = centre + w.cross(t) / w.squaredNorm();
-      motion = "rotation about an axis along " + vector_text(w) + " through (" + number(p.x(), extent) + ", " +
-               number(p.y(), extent) + ", " + number(p.z(), extent) + ")";
+      motion = "rotation about an axis along " + vector_text(w) + " through (" + cleaned_number(p.x(), extent) + ", " +
+               cleaned_number(p.y(), extent) + ", " + cleaned_number(p.z(), extent) + ")";
     }
     text += (text.empty() ? "" : ", ") + motion;
   }
@@ -253,8 +249,8 @@ void check_rigid_motions_2d(const Model& model) {
     const FreeMotions free = describe(eigen.eigenvectors().leftCols(k), centre[p], extent[p] > 0 ? extent[p] : 1.0);
     const std::string which = n_parts == 1 ? "the body"
                                            : "the part of the body with node " + std::to_string(first_node[p]) +
-                                                 " at (" + number(mesh.nodes[first_node[p]].x(), extent[p]) + ", " +
-                                                 number(mesh.nodes[first_node[p]].y(), extent[p]) + ")";
+                                                 " at (" + cleaned_number(mesh.nodes[first_node[p]].x(), extent[p]) +
+                                                 ", " + cleaned_number(mesh.nodes[first_node[p]].y(), extent[p]) + ")";
     throw InputError("load", "leaves " + which + " free to move rigidly (" + free.what +
                                  "): no prescribed displacement stops it, so K is singular, and contact alone does not "
                                  "hold a body here; " +

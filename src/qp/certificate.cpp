@@ -5,18 +5,9 @@
 #include <limits>
 
 #include "contactqp/cholesky.hpp"
+#include "norms.hpp"
 
 namespace contactqp {
-namespace {
-
-double inf_norm(const VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
-
-// x / scale, or x itself when the scale is zero (then everything it measures is zero too,
-// and the residual is reported absolute rather than as 0/0).
-double relative(double x, double scale) { return scale > 0 ? x / scale : x; }
-
-}  // namespace
-
 double force_scale(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda) {
   const VectorXd Ku = qp.K * u;
   const VectorXd Btl = qp.B.transpose() * lambda;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "../qp/norms.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"
@@ -15,18 +16,6 @@ namespace contactqp {
 namespace {
 
 constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
-
-// ‖a − b‖ / ‖b‖, or the absolute difference when b = 0.
-double relative_difference(const VectorXd& a, const VectorXd& b) {
-  const double scale = b.norm();
-  return scale > 0 ? (a - b).norm() / scale : (a - b).norm();
-}
-
-// Symmetric, for the pairwise check: ‖a − b‖ / max(‖a‖, ‖b‖).
-double symmetric_difference(const VectorXd& a, const VectorXd& b) {
-  const double scale = std::max(a.norm(), b.norm());
-  return scale > 0 ? (a - b).norm() / scale : 0.0;
-}
 
 bool converged(const BackendRun& run) { return run.result.status == Status::Converged; }
 

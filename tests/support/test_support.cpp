@@ -93,10 +93,6 @@ QuadraticProgram random_qp(int n, int m, unsigned seed) {
   return make_qp(K, f, B, g);
 }
 
-double relative_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  return (a - b).norm() / std::max(b.norm(), 1e-300);
-}
-
 SolveOptions options_for(Backend backend, double tol) {
   SolveOptions options;
   options.backend = backend;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "../../src/qp/norms.hpp"
 #include "contactqp/post.hpp"
 #include "contactqp/qp.hpp"
 #include "contactqp/scene.hpp"
@@ -31,8 +32,8 @@ ExactSolution solve_by_enumeration(const QuadraticProgram& qp);
 // whose solution has some constraints active and some not.
 QuadraticProgram random_qp(int n, int m, unsigned seed);
 
-// ‖a − b‖ / max(‖b‖, tiny): the relative difference the tests compare against tolerances.
-double relative_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b);
+// The norms and relative differences (relative_difference, relative_error, ...) the tests
+// compare against tolerances are the library's own, src/qp/norms.hpp, included above.
 
 // Options for `backend` at tolerance `tol`, with enough iterations for the small test problems.
 SolveOptions options_for(Backend backend, double tol);

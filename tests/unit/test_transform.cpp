@@ -11,12 +11,6 @@
 using namespace contactqp;
 using namespace contactqp::testing;
 
-namespace {
-
-double relative(double a, double b) { return std::abs(a - b) / std::abs(b); }
-
-}  // namespace
-
 TEST_CASE("rotation matrices are exact for quarter turns", "[unit][transform]") {
   TransformSpec t;
   t.rotate_degrees = -270;
@@ -44,9 +38,9 @@ TEST_CASE("Hertz turned by any angle: the same force, b and p0 within 1e-6", "[u
   const SceneRun turned =
       run_scene("scenes/hertz.json", R"({"transform": {"rotate_degrees": )" + std::to_string(angle) + "}}");
   REQUIRE(turned.result.status == Status::Converged);
-  CHECK(relative(turned.contact.total_force, base.contact.total_force) < 1e-6);
-  CHECK(relative(turned.contact.half_width, base.contact.half_width) < 1e-6);
-  CHECK(relative(turned.contact.max_pressure, base.contact.max_pressure) < 1e-6);
+  CHECK(relative_error(turned.contact.total_force, base.contact.total_force) < 1e-6);
+  CHECK(relative_error(turned.contact.half_width, base.contact.half_width) < 1e-6);
+  CHECK(relative_error(turned.contact.max_pressure, base.contact.max_pressure) < 1e-6);
   // The whole displacement field is the unrotated one, turned.
   const Eigen::Matrix2d R = turned.model.rotation.topLeftCorner<2, 2>();
   const Eigen::VectorXd u0 = full_displacement(base.model, base.result.u);
@@ -73,7 +67,7 @@ TEST_CASE("a turned circle indenter with gravity and a point load: invariant too
   const SceneRun turned = run_scene(parse_scene(turned_scene.dump(), source_path("scenes/x.json")));
   REQUIRE(base.result.status == Status::Converged);
   REQUIRE(turned.result.status == Status::Converged);
-  CHECK(relative(turned.contact.total_force, base.contact.total_force) < 1e-6);
-  CHECK(relative(turned.contact.half_width, base.contact.half_width) < 1e-6);
-  CHECK(relative(turned.contact.max_pressure, base.contact.max_pressure) < 1e-6);
+  CHECK(relative_error(turned.contact.total_force, base.contact.total_force) < 1e-6);
+  CHECK(relative_error(turned.contact.half_width, base.contact.half_width) < 1e-6);
+  CHECK(relative_error(turned.contact.max_pressure, base.contact.max_pressure) < 1e-6);
 }

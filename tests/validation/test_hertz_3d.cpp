@@ -15,8 +15,6 @@ using namespace contactqp::testing;
 
 namespace {
 
-double relative(double a, double b) { return std::abs(a - b) / std::abs(b); }
-
 // A coarse quarter hemisphere (about 3e3 DOFs) for the checks that run many solves.
 const char* kCoarseSphere = R"({"body": {"mesh": {"contact_size": 0.03, "order": 1}}})";
 
@@ -82,12 +80,12 @@ TEST_CASE("a 3D scene turned about any axis: the same force, a and p0 within 1e-
       run_scene("scenes/hertz-sphere.json",
                 std::string(R"({"body": {"mesh": {"contact_size": 0.03, "order": 1}}, "transform": )") + turn + "}");
   REQUIRE(turned.result.status == Status::Converged);
-  CHECK(relative(turned.contact.total_force, base.contact.total_force) < 1e-6);
-  CHECK(relative(turned.contact.contact_radius, base.contact.contact_radius) < 1e-6);
-  CHECK(relative(turned.contact.max_pressure, base.contact.max_pressure) < 1e-6);
+  CHECK(relative_error(turned.contact.total_force, base.contact.total_force) < 1e-6);
+  CHECK(relative_error(turned.contact.contact_radius, base.contact.contact_radius) < 1e-6);
+  CHECK(relative_error(turned.contact.max_pressure, base.contact.max_pressure) < 1e-6);
   // The push is the same force along the turned axis.
   const Eigen::Vector3d axis = turned.model.rotation.col(2);
-  CHECK(relative(-turned.reactions.at(0).force.dot(axis), -base.reactions.at(0).force.z()) < 1e-6);
+  CHECK(relative_error(-turned.reactions.at(0).force.dot(axis), -base.reactions.at(0).force.z()) < 1e-6);
 }
 
 TEST_CASE("3D units: E × 1e±9 and lengths × 1e±3 give the same scaled answer on every backend",
@@ -111,9 +109,9 @@ TEST_CASE("3D units: E × 1e±9 and lengths × 1e±3 give the same scaled answer
   const SceneRun scaled = run_scene("scenes/hertz-sphere.json", patch);
   REQUIRE(scaled.result.status == Status::Converged);
   // Force scales with E L², lengths with L, pressures with E.
-  CHECK(relative(scaled.contact.total_force, base.contact.total_force * E * L * L) < 1e-6);
-  CHECK(relative(scaled.contact.contact_radius, base.contact.contact_radius * L) < 1e-6);
-  CHECK(relative(scaled.contact.max_pressure, base.contact.max_pressure * E) < 1e-6);
+  CHECK(relative_error(scaled.contact.total_force, base.contact.total_force * E * L * L) < 1e-6);
+  CHECK(relative_error(scaled.contact.contact_radius, base.contact.contact_radius * L) < 1e-6);
+  CHECK(relative_error(scaled.contact.max_pressure, base.contact.max_pressure * E) < 1e-6);
 }
 
 TEST_CASE("a block pressed flat on a plane in 3D: uniform pressure E δ/H, exact with 4-node tetrahedra",
