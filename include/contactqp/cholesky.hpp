@@ -14,6 +14,20 @@
 
 namespace contactqp {
 
+// What CHOLMOD's symbolic analysis predicts for the factor of A, before any memory for it is
+// committed: for sizing a problem (benchmarks/scaling: where the direct solver stops fitting).
+struct FactorPrediction {
+  bool ok = false;
+  std::string message;   // why not, when !ok
+  std::string ordering;  // the ordering the analysis chose: "amd", "metis", ...
+  bool supernodal = false;
+  long long factor_nonzeros = 0;    // nnz(L)
+  double factor_bytes = 0;          // what factorising allocates for L (values and pattern)
+  bool fits_32bit_indices = false;  // CholeskyFactor (CHOLMOD's 32-bit interface) holds at most 2^31 - 1 entries
+  double flops = 0;                 // floating-point operations of the factorisation
+  double analyse_seconds = 0;
+};
+
 class CholeskyFactor : public LinearSolver {
  public:
   // Analyses and factorises A (only its lower triangle is read). Never throws on a
@@ -46,6 +60,9 @@ class CholeskyFactor : public LinearSolver {
   // The same factor, standing for the matrix c·A (solves divide by c). Shares the storage.
   std::shared_ptr<const CholeskyFactor> scaled(double c) const;
   LinearSolverStatistics statistics() const override;
+
+  // The symbolic analysis alone (no numeric factorisation): nnz(L), its bytes and the flops.
+  static FactorPrediction predict(const Eigen::SparseMatrix<double>& A, Ordering ordering = Ordering::Auto);
 
   double analyse_seconds() const;
   double factorize_seconds() const;

@@ -103,11 +103,14 @@ std::string summary_table(const RunReport& report) {
       if (const auto hertz = compare_with_hertz(model, o)) out += hertz_line("  hertz     ", *hertz);
     }
   }
-  for (const Reaction& r : report.reactions)
-    out += solid ? format("  reaction     %s on \"%s\": (%.6g, %.6g, %.6g)\n", r.load.c_str(), r.boundary.c_str(),
-                          r.force.x(), r.force.y(), r.force.z())
-                 : format("  reaction     %s on \"%s\": (%.6g, %.6g)\n", r.load.c_str(), r.boundary.c_str(),
-                          r.force.x(), r.force.y());
+  for (const Reaction& r : report.reactions) {
+    // + 0.0 turns an exact −0 (a component that is zero by symmetry) into 0, which prints as "0".
+    const Eigen::Vector3d f = r.force.array() + 0.0;
+    out +=
+        solid ? format("  reaction     %s on \"%s\": (%.6g, %.6g, %.6g)\n", r.load.c_str(), r.boundary.c_str(), f.x(),
+                       f.y(), f.z())
+              : format("  reaction     %s on \"%s\": (%.6g, %.6g)\n", r.load.c_str(), r.boundary.c_str(), f.x(), f.y());
+  }
   std::string times;
   for (const auto& [phase, seconds] : report.timings.phases())
     if (phase != "total") times += format("%s %.3f, ", phase.c_str(), seconds);

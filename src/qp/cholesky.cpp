@@ -76,21 +76,87 @@ struct CholeskyFactor::Impl {
   }
 };
 
-CholeskyFactor::CholeskyFactor(const Eigen::SparseMatrix<double>& A_in, Ordering ordering)
-    : impl_(std::make_shared<Impl>()) {
-  Impl& m = *impl_;
+namespace {
+
+// The fill-reducing ordering CHOLMOD's analysis tries.
+void set_ordering(cholmod_common& common, Ordering ordering) {
   switch (ordering) {
     case Ordering::Auto:
       break;  // nmethods = 0: AMD, then METIS too when AMD's fill is high
     case Ordering::Amd:
-      m.common.nmethods = 1;
-      m.common.method[0].ordering = CHOLMOD_AMD;
+      common.nmethods = 1;
+      common.method[0].ordering = CHOLMOD_AMD;
       break;
     case Ordering::Metis:
-      m.common.nmethods = 1;
-      m.common.method[0].ordering = CHOLMOD_METIS;
+      common.nmethods = 1;
+      common.method[0].ordering = CHOLMOD_METIS;
       break;
   }
+}
+
+// nnz(L) of a symbolic or numeric factor, whose integers are Int (int, or SuiteSparse_long for
+// CHOLMOD's cholmod_l_ interface).
+template <typename Int = int>
+long long count_nonzeros(const cholmod_factor* L) {
+  if (!L) return 0;
+  if (L->is_super) {
+    // Supernodal storage: each supernode is a dense block; count its lower trapezoid.
+    long long total = 0;
+    const Int* super = static_cast<const Int*>(L->super);
+    const Int* pi = static_cast<const Int*>(L->pi);
+    for (size_t s = 0; s < L->nsuper; ++s) {
+      const long long cols = super[s + 1] - super[s];
+      const long long rows = pi[s + 1] - pi[s];
+      total += cols * rows - cols * (cols - 1) / 2;
+    }
+    return total;
+  }
+  const Int* colcount = static_cast<const Int*>(L->ColCount);
+  long long total = 0;
+  for (size_t j = 0; j < L->n; ++j) total += colcount[j];
+  return total;
+}
+
+// CHOLMOD's status in words, with what to do about the two a large problem meets.
+std::string status_text(int status) {
+  switch (status) {
+    case CHOLMOD_OUT_OF_MEMORY:
+      return "out of memory (status -2): the factor does not fit; --linear-solver petsc needs no factor";
+    case CHOLMOD_TOO_LARGE:
+      return "the factor would exceed 2^31 entries, the limit of 32-bit indices (status -3); "
+             "--linear-solver petsc needs no factor";
+    default:
+      return "status " + std::to_string(status);
+  }
+}
+
+std::string ordering_label(const cholmod_factor* L) {
+  if (!L) return "none";
+  switch (L->ordering) {
+    case CHOLMOD_NATURAL:
+      return "natural";
+    case CHOLMOD_GIVEN:
+      return "given";
+    case CHOLMOD_AMD:
+      return "amd";
+    case CHOLMOD_METIS:
+      return "metis";
+    case CHOLMOD_NESDIS:
+      return "nesdis";
+    case CHOLMOD_COLAMD:
+      return "colamd";
+    case CHOLMOD_POSTORDERED:
+      return "postordered";
+  }
+  return "unknown";
+}
+
+}  // namespace
+
+CholeskyFactor::CholeskyFactor(const Eigen::SparseMatrix<double>& A_in, Ordering ordering)
+    : impl_(std::make_shared<Impl>()) {
+  Impl& m = *impl_;
+  set_ordering(m.common, ordering);
   m.n = static_cast<int>(A_in.rows());
   if (A_in.rows() != A_in.cols()) {
     m.message = "matrix is not square";
@@ -109,7 +175,7 @@ CholeskyFactor::CholeskyFactor(const Eigen::SparseMatrix<double>& A_in, Ordering
   m.L = cholmod_analyze(&a, &m.common);
   m.analyse_seconds = clock.seconds();
   if (!m.L) {
-    m.message = "CHOLMOD could not analyse the matrix (status " + std::to_string(m.common.status) + ")";
+    m.message = "CHOLMOD could not analyse the matrix: " + status_text(m.common.status);
     return;
   }
   clock.restart();
@@ -126,7 +192,7 @@ CholeskyFactor::CholeskyFactor(const Eigen::SparseMatrix<double>& A_in, Ordering
     return;
   }
   if (m.common.status < CHOLMOD_OK) {
-    m.message = "CHOLMOD failed to factorise (status " + std::to_string(m.common.status) + ")";
+    m.message = "CHOLMOD failed to factorise: " + status_text(m.common.status);
     return;
   }
   m.ok = true;
@@ -143,48 +209,68 @@ int CholeskyFactor::failed_column() const { return impl_->failed_column; }
 double CholeskyFactor::analyse_seconds() const { return impl_->analyse_seconds; }
 double CholeskyFactor::factorize_seconds() const { return impl_->factorize_seconds; }
 
-long long CholeskyFactor::factor_nonzeros() const {
-  const cholmod_factor* L = impl_->L;
-  if (!L) return 0;
-  if (L->is_super) {
-    // Supernodal storage: each supernode is a dense block; count its lower trapezoid.
-    long long total = 0;
-    const int* super = static_cast<const int*>(L->super);
-    const int* pi = static_cast<const int*>(L->pi);
-    for (size_t s = 0; s < L->nsuper; ++s) {
-      const long long cols = super[s + 1] - super[s];
-      const long long rows = pi[s + 1] - pi[s];
-      total += cols * rows - cols * (cols - 1) / 2;
-    }
-    return total;
-  }
-  const int* colcount = static_cast<const int*>(L->ColCount);
-  long long total = 0;
-  for (size_t j = 0; j < L->n; ++j) total += colcount[j];
-  return total;
-}
+long long CholeskyFactor::factor_nonzeros() const { return count_nonzeros(impl_->L); }
 
 bool CholeskyFactor::supernodal() const { return impl_->L && impl_->L->is_super; }
 
-std::string CholeskyFactor::ordering_name() const {
-  if (!impl_->L) return "none";
-  switch (impl_->L->ordering) {
-    case CHOLMOD_NATURAL:
-      return "natural";
-    case CHOLMOD_GIVEN:
-      return "given";
-    case CHOLMOD_AMD:
-      return "amd";
-    case CHOLMOD_METIS:
-      return "metis";
-    case CHOLMOD_NESDIS:
-      return "nesdis";
-    case CHOLMOD_COLAMD:
-      return "colamd";
-    case CHOLMOD_POSTORDERED:
-      return "postordered";
+std::string CholeskyFactor::ordering_name() const { return ordering_label(impl_->L); }
+
+FactorPrediction CholeskyFactor::predict(const Eigen::SparseMatrix<double>& A_in, Ordering ordering) {
+  FactorPrediction p;
+  if (A_in.rows() != A_in.cols()) {
+    p.message = "matrix is not square";
+    return p;
   }
-  return "unknown";
+  Eigen::SparseMatrix<double> compressed;
+  const Eigen::SparseMatrix<double>* A = &A_in;
+  if (!A_in.isCompressed()) {
+    compressed = A_in;
+    compressed.makeCompressed();
+    A = &compressed;
+  }
+  // The analysis runs on CHOLMOD's 64-bit-index interface (cholmod_l_*), on the pattern alone:
+  // the factor the 32-bit interface builds (the one CholeskyFactor uses) is limited to 2^31
+  // entries, and the prediction must say by how much a large problem exceeds that.
+  const long n = A->rows();
+  std::vector<SuiteSparse_long> column_start(A->outerIndexPtr(), A->outerIndexPtr() + n + 1);
+  std::vector<SuiteSparse_long> row_index(A->innerIndexPtr(), A->innerIndexPtr() + A->nonZeros());
+  cholmod_sparse a{};
+  a.nrow = a.ncol = n;
+  a.nzmax = A->nonZeros();
+  a.p = column_start.data();
+  a.i = row_index.data();
+  a.stype = -1;
+  a.itype = CHOLMOD_LONG;
+  a.xtype = CHOLMOD_PATTERN;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = 1;
+  a.packed = 1;
+  cholmod_common common;
+  cholmod_l_start(&common);
+  common.print = 0;
+  set_ordering(common, ordering);
+  Stopwatch clock;
+  cholmod_factor* L = cholmod_l_analyze(&a, &common);
+  p.analyse_seconds = clock.seconds();
+  if (!L) {
+    p.message = "CHOLMOD could not analyse the matrix: " + status_text(common.status);
+    cholmod_l_finish(&common);
+    return p;
+  }
+  p.ok = true;
+  p.ordering = ordering_label(L);
+  p.supernodal = L->is_super;
+  p.factor_nonzeros = count_nonzeros<SuiteSparse_long>(L);
+  // What factorising would allocate for L: its values (a supernodal factor stores each
+  // supernode's dense block, xsize entries) and its integer pattern (32-bit indices).
+  const double values = L->is_super ? static_cast<double>(L->xsize) : static_cast<double>(p.factor_nonzeros);
+  const double indices = L->is_super ? static_cast<double>(L->ssize) : static_cast<double>(p.factor_nonzeros);
+  p.factor_bytes = 8.0 * values + 4.0 * indices;
+  p.fits_32bit_indices = std::max(values, indices) < 2147483647.0;
+  p.flops = common.fl;
+  cholmod_l_free_factor(&L, &common);
+  cholmod_l_finish(&common);
+  return p;
 }
 
 LinearSolverStatistics CholeskyFactor::statistics() const {

@@ -52,3 +52,52 @@ TEST_CASE("a matrix that is not positive definite is reported, not solved", "[un
   CHECK(factor.failed_column() >= 0);
   CHECK(factor.solve(Eigen::VectorXd::Ones(50)).allFinite());
 }
+
+namespace {
+
+// The 7-point Laplacian of an n × n × n grid, shifted to be positive definite.
+Eigen::SparseMatrix<double> laplacian_3d(int n) {
+  std::vector<Eigen::Triplet<double>> entries;
+  const auto index = [n](int i, int j, int k) { return (i * n + j) * n + k; };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        const int row = index(i, j, k);
+        entries.emplace_back(row, row, 6.1);
+        const int neighbours[3][3] = {{i + 1, j, k}, {i, j + 1, k}, {i, j, k + 1}};
+        for (const auto& q : neighbours)
+          if (q[0] < n && q[1] < n && q[2] < n) {
+            entries.emplace_back(row, index(q[0], q[1], q[2]), -1.0);
+            entries.emplace_back(index(q[0], q[1], q[2]), row, -1.0);
+          }
+      }
+  Eigen::SparseMatrix<double> A(n * n * n, n * n * n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  return A;
+}
+
+}  // namespace
+
+TEST_CASE("the predicted factor is the one factorising builds, without factorising", "[unit][cholesky]") {
+  // A tridiagonal matrix has no fill: nnz(L) = 2n − 1 exactly.
+  const FactorPrediction line = CholeskyFactor::predict(laplacian_1d(200, 0.01), Ordering::Amd);
+  REQUIRE(line.ok);
+  CHECK(line.factor_nonzeros == 399);
+  CHECK(line.fits_32bit_indices);
+  // On a 3D grid (fill, supernodes), the prediction equals the numeric factor's count, for each
+  // ordering, and the bytes cover at least the values.
+  const Eigen::SparseMatrix<double> A = laplacian_3d(14);
+  for (Ordering ordering : {Ordering::Amd, Ordering::Metis}) {
+    const FactorPrediction p = CholeskyFactor::predict(A, ordering);
+    const CholeskyFactor factor(A, ordering);
+    REQUIRE(p.ok);
+    REQUIRE(factor.ok());
+    CHECK(p.ordering == factor.ordering_name());
+    CHECK(p.supernodal == factor.supernodal());
+    CHECK(p.factor_nonzeros == factor.factor_nonzeros());
+    CHECK(p.factor_nonzeros > 10 * A.rows());  // the grid fills in
+    CHECK(p.factor_bytes >= 8.0 * p.factor_nonzeros);
+    CHECK(p.flops > p.factor_nonzeros);
+  }
+  CHECK_FALSE(CholeskyFactor::predict(Eigen::SparseMatrix<double>(3, 4)).ok);
+}
