@@ -18,20 +18,7 @@ mkdir -p "$RESULTS/prediction-scenes"
 cmake -S "$SOURCE" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DCONTACTQP_BUILD_BENCHMARKS=ON >/dev/null
 cmake --build "$BUILD" -j2 --target factor_prediction
 LEVELS=${LEVELS:-"1:0.0035 2:0.007 1:0.0025 2:0.005 1:0.0018 2:0.0035"}
-SCENES=""
-for level in $LEVELS; do
-  order=${level%%:*}
-  size=${level#*:}
-  file="$RESULTS/prediction-scenes/sphere-order$order-cs$size.json"
-  /usr/bin/python3 - "$SOURCE/scenes/hertz-sphere.json" "$file" "$order" "$size" <<'PY'
-import json, sys
-scene = json.load(open(sys.argv[1]))
-scene["description"] = f"scenes/hertz-sphere.json with order {sys.argv[3]} and contact_size {sys.argv[4]} (benchmarks/scaling/factor-prediction-3d.sh)"
-scene["body"]["mesh"]["order"] = int(sys.argv[3])
-scene["body"]["mesh"]["contact_size"] = float(sys.argv[4])
-json.dump(scene, open(sys.argv[2], "w"), indent=2)
-PY
-  SCENES="$SCENES${SCENES:+,}$file"
-done
+. "$SOURCE/benchmarks/scaling/sphere-levels.sh"
+sphere_levels "$SOURCE" "$RESULTS/prediction-scenes" "$LEVELS" benchmarks/scaling/factor-prediction-3d.sh
 cd "$SOURCE"
 "$BUILD/benchmarks/scaling/factor_prediction" --scenes "$SCENES" --out "$RESULTS"

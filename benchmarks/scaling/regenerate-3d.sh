@@ -20,19 +20,6 @@ cmake -S "$SOURCE" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DCONTACTQP_BUILD_BENC
 cmake --build "$BUILD" -j2 --target scaling_benchmark
 # order:contact_size, from about 1e4 DOFs up; the largest 4-node level has about 4e5 DOFs.
 LEVELS=${LEVELS:-"1:0.01 2:0.02 1:0.007 2:0.014 1:0.005 2:0.01 1:0.0035 2:0.007 1:0.0025"}
-SCENES=""
-for level in $LEVELS; do
-  order=${level%%:*}
-  size=${level#*:}
-  file="$RESULTS/scenes/sphere-order$order-cs$size.json"
-  /usr/bin/python3 - "$SOURCE/scenes/hertz-sphere.json" "$file" "$order" "$size" <<'PY'
-import json, sys
-scene = json.load(open(sys.argv[1]))
-scene["description"] = f"scenes/hertz-sphere.json with order {sys.argv[3]} and contact_size {sys.argv[4]} (benchmarks/scaling/regenerate-3d.sh)"
-scene["body"]["mesh"]["order"] = int(sys.argv[3])
-scene["body"]["mesh"]["contact_size"] = float(sys.argv[4])
-json.dump(scene, open(sys.argv[2], "w"), indent=2)
-PY
-  SCENES="$SCENES${SCENES:+,}$file"
-done
+. "$SOURCE/benchmarks/scaling/sphere-levels.sh"
+sphere_levels "$SOURCE" "$RESULTS/scenes" "$LEVELS" benchmarks/scaling/regenerate-3d.sh
 "$BUILD/benchmarks/scaling/scaling_benchmark" --scenes "$SCENES" --out "$RESULTS" --time-cap "$CAP"

@@ -117,6 +117,15 @@ long long count_nonzeros(const cholmod_factor* L) {
   return total;
 }
 
+// A in compressed storage, as CHOLMOD reads it: A itself, or a compressed copy kept in `storage`.
+const Eigen::SparseMatrix<double>& compressed(const Eigen::SparseMatrix<double>& A,
+                                              Eigen::SparseMatrix<double>& storage) {
+  if (A.isCompressed()) return A;
+  storage = A;
+  storage.makeCompressed();
+  return storage;
+}
+
 // CHOLMOD's status in words, with what to do about the two a large problem meets.
 std::string status_text(int status) {
   switch (status) {
@@ -162,13 +171,8 @@ CholeskyFactor::CholeskyFactor(const Eigen::SparseMatrix<double>& A_in, Ordering
     m.message = "matrix is not square";
     return;
   }
-  Eigen::SparseMatrix<double> compressed;
-  const Eigen::SparseMatrix<double>* A = &A_in;
-  if (!A_in.isCompressed()) {
-    compressed = A_in;
-    compressed.makeCompressed();
-    A = &compressed;
-  }
+  Eigen::SparseMatrix<double> storage;
+  const Eigen::SparseMatrix<double>* A = &compressed(A_in, storage);
   cholmod_sparse a = Impl::view(*A);
 
   Stopwatch clock;
@@ -221,13 +225,8 @@ FactorPrediction CholeskyFactor::predict(const Eigen::SparseMatrix<double>& A_in
     p.message = "matrix is not square";
     return p;
   }
-  Eigen::SparseMatrix<double> compressed;
-  const Eigen::SparseMatrix<double>* A = &A_in;
-  if (!A_in.isCompressed()) {
-    compressed = A_in;
-    compressed.makeCompressed();
-    A = &compressed;
-  }
+  Eigen::SparseMatrix<double> storage;
+  const Eigen::SparseMatrix<double>* A = &compressed(A_in, storage);
   // The analysis runs on CHOLMOD's 64-bit-index interface (cholmod_l_*), on the pattern alone:
   // the factor the 32-bit interface builds (the one CholeskyFactor uses) is limited to 2^31
   // entries, and the prediction must say by how much a large problem exceeds that.
