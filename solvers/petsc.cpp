@@ -94,8 +94,10 @@ SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options)
   const std::string how = solved.method + "; " + std::to_string(solved.iterations) + " outer steps, " +
                           std::to_string(solved.krylov_iterations) + " Krylov iterations; " +
                           std::to_string(qp.n_constraints()) + " candidate rows, " + std::to_string(solved.active) +
-                          " in contact; PETSc memory per rank " + short_number(solved.petsc_bytes / 1048576.0) +
-                          " MiB, of which A " + short_number(solved.matrix_bytes / 1048576.0) + " MiB";
+                          " in contact; A " + short_number(solved.matrix_bytes / 1048576.0) + " MiB per rank" +
+                          (options.verbose ? "; PETSc memory per rank " + short_number(solved.petsc_bytes / 1048576.0) +
+                                                 " MiB (A, its working copy and the preconditioner)"
+                                           : std::string());
   result.status = solved.status;
   result.message = solved.status == Status::Converged ? "converged: KKT residual " + short_number(solved.residual) +
                                                             " <= " + short_number(options.tol) + " (" + how + ")"

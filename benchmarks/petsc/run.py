@@ -55,6 +55,8 @@ def run(cli, scene, ranks, arguments, out):
     inner = ["/bin/sh", "-c",
              'ulimit -v %d; exec /usr/bin/time -f "%%e %%M" -o "%s.${OMPI_COMM_WORLD_RANK:-0}" "$@"' % (CAP_KB, times[:-3]),
              "sh", cli, "solve", scene, "--json", result] + arguments
+    # --verbose: the petsc backend's message then carries its resident growth per rank.
+    inner.append("--verbose")
     command = (["mpirun", "-n", str(ranks), "--oversubscribe"] if ranks > 1 else []) + inner
     done = subprocess.run(command, env=ENV, capture_output=True, text=True)
     walls, peaks = [], []
@@ -89,7 +91,7 @@ def main(build, out, levels):
             report, wall, peaks, code, err = run(cli, scene, ranks, arguments, out)
             t = report.get("timings", {})
             message = report.get("message", "")
-            memory = re.search(r"PETSc memory per rank ([0-9.e+-]+) MiB, of which A ([0-9.e+-]+) MiB", message)
+            memory = re.search(r"A ([0-9.e+-]+) MiB per rank; PETSc memory per rank ([0-9.e+-]+) MiB", message)
             krylov = re.search(r"([0-9]+) Krylov iterations", message)
             row = {
                 "level": level, "dofs": report.get("dofs"), "constraints": report.get("constraints"),
@@ -98,8 +100,8 @@ def main(build, out, levels):
                 "solver_seconds": round(sum(t.get(k, 0) for k in ("transform", "factorize", "solve")), 4) if t else None,
                 "total_seconds": round(t.get("total", 0), 3) if t else None, "wall_seconds": wall,
                 "peak_mib_per_rank": round(max(peaks), 1) if peaks else None,
-                "petsc_mib_per_rank": float(memory.group(1)) if memory else None,
-                "matrix_mib_per_rank": float(memory.group(2)) if memory else None,
+                "petsc_mib_per_rank": float(memory.group(2)) if memory else None,
+                "matrix_mib_per_rank": float(memory.group(1)) if memory else None,
                 "krylov_iterations": int(krylov.group(1)) if krylov else None,
                 "message": message or err,
             }

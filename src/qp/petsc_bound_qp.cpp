@@ -56,16 +56,7 @@ struct Work {
   double target = 0;  // the absolute residual the current KSP solve stops at
   double A_norm = 0;
   bool options_error = false;
-  PetscLogDouble resident_before = 0;  // bytes, before A was assembled
-  double petsc_bytes = 0;              // resident growth up to the first preconditioner
-
-  // The resident set's growth since before the assembly (once: after the first KSP set-up).
-  void measure_growth() {
-    if (petsc_bytes > 0) return;
-    PetscLogDouble now = 0;
-    PetscMemoryGetCurrentUsage(&now);
-    petsc_bytes = std::max(1.0, now - resident_before);
-  }
+  double petsc_bytes = 0;  // the most that A, its working copy and the preconditioner held at once
 
   ~Work() {
     if (petsc_finalized()) return;
@@ -131,7 +122,6 @@ struct Work {
 
 void assemble(Work& work, const BoundQp& problem) {
   const Eigen::SparseMatrix<double>& A = problem.A;
-  PetscMemoryGetCurrentUsage(&work.resident_before);
   PetscInt local_rows = PETSC_DECIDE, global_rows = work.n;
   check(PetscSplitOwnership(PETSC_COMM_WORLD, &local_rows, &global_rows), "PetscSplitOwnership");
   MPI_Scan(&local_rows, &work.end, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
@@ -217,6 +207,39 @@ bool any_rank_failed(std::string& message) {
   return true;
 }
 
+// The bytes of an AIJ matrix's rows on this rank: a value and a column index per entry, a row
+// pointer per row.
+double matrix_bytes(Mat M) {
+  MatInfo info;
+  PetscInt rows = 0, columns = 0;
+  if (MatGetInfo(M, MAT_LOCAL, &info) || MatGetLocalSize(M, &rows, &columns)) return 0;
+  return info.nz_allocated * (sizeof(PetscScalar) + sizeof(PetscInt)) + (rows + 1.0) * sizeof(PetscInt);
+}
+
+// A, its working copy W and the multigrid hierarchy on this rank: the coarse operators and the
+// interpolations (GAMG's restriction is the transpose of the same matrix); the coarsest
+// level's LU is a few hundred rows and left out. Other preconditioners: A and W only.
+double petsc_bytes(Work& work) {
+  double bytes = matrix_bytes(work.A) + (work.W ? matrix_bytes(work.W) : 0.0);
+  if (!work.ksp) return bytes;
+  PC pc = nullptr;
+  KSPGetPC(work.ksp, &pc);
+  PetscBool multigrid = PETSC_FALSE;
+  PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(pc), &multigrid, PCGAMG, PCMG, "");
+  PetscInt levels = 0;
+  if (!multigrid || PCMGGetLevels(pc, &levels)) return bytes;
+  for (PetscInt level = 0; level < levels; ++level) {
+    KSP smoother = nullptr;
+    Mat op = nullptr;
+    if (level + 1 < levels && !PCMGGetSmoother(pc, level, &smoother) && !KSPGetOperators(smoother, &op, nullptr) && op)
+      bytes += matrix_bytes(op);
+    Mat interpolation = nullptr;
+    if (level > 0 && !PCMGGetInterpolation(pc, level, &interpolation) && interpolation)
+      bytes += matrix_bytes(interpolation);
+  }
+  return bytes;
+}
+
 double inf_norm(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
 
 // The primal-dual active-set loop.
@@ -279,7 +302,7 @@ void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& option
     work.target = kInnerFraction * options.tol * std::max(b_norm, inf_norm(mu));
     if (work.target == 0) work.target = kInnerFraction * options.tol;
     check(KSPSolve(work.ksp, work.rhs, work.x), "KSPSolve");
-    work.measure_growth();
+    work.petsc_bytes = std::max(work.petsc_bytes, petsc_bytes(work));
     PetscInt iterations = 0;
     KSPGetIterationNumber(work.ksp, &iterations);
     result.krylov_iterations += iterations;
@@ -370,7 +393,7 @@ void solve_tao(Work& work, const BoundQp& problem, const BoundQpOptions& options
     check(code, "TaoSetFromOptions");
   }
   check(TaoSolve(work.tao), "TaoSolve");
-  work.measure_growth();
+  work.petsc_bytes = petsc_bytes(work);  // A (TAO's own reduced matrices are not counted)
   TaoConvergedReason reason = TAO_CONTINUE_ITERATING;
   TaoGetConvergedReason(work.tao, &reason);
   PetscInt iterations = 0, linear = 0;
@@ -446,12 +469,7 @@ BoundQpResult solve_bound_qp_petsc(const BoundQp& problem, const BoundQpOptions&
       result.status = Status::NumericalError;
       result.message = failure;
     } else {
-      // A's storage in AIJ: a value and a column index per entry, a row pointer per row.
-      MatInfo info;
-      MatGetInfo(work.A, MAT_LOCAL, &info);
-      const double matrix_bytes = info.nz_allocated * (sizeof(PetscScalar) + sizeof(PetscInt)) +
-                                  (work.end - work.first + 1.0) * sizeof(PetscInt);
-      double mine[2] = {matrix_bytes, work.petsc_bytes}, largest[2] = {0, 0};
+      double mine[2] = {matrix_bytes(work.A), work.petsc_bytes}, largest[2] = {0, 0};
       MPI_Allreduce(mine, largest, 2, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
       result.matrix_bytes = largest[0];
       result.petsc_bytes = largest[1];

@@ -52,9 +52,9 @@ struct BoundQpResult {
   double setup_seconds = 0;    // the matrix into PETSc
   double iterate_seconds = 0;  // the outer loop
   std::string method;          // what ran, e.g. "pdas, cg + gamg, 3 near-null modes"
-  // Memory per rank, the largest over the ranks: A's PETSc storage (MatGetInfo), and the growth
-  // of the resident set from before A was assembled to after the first preconditioner was set
-  // up (A, its working copy, the preconditioner, the vectors).
+  // Memory per rank, the largest over the ranks (MatGetInfo): A's PETSc storage, and the most
+  // that A, its working copy and the multigrid hierarchy (coarse operators, interpolations)
+  // held at once.
   double matrix_bytes = 0;
   double petsc_bytes = 0;
   std::vector<std::string> warnings;
