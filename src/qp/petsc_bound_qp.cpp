@@ -240,6 +240,14 @@ double petsc_bytes(Work& work) {
   return bytes;
 }
 
+// A number in a message, to four significant digits ("2.9e-11", not to_string's "0.000000").
+std::string number_text(double x) {
+  std::ostringstream text;
+  text.precision(4);
+  text << x;
+  return text.str();
+}
+
 double inf_norm(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
 
 // The primal-dual active-set loop.
@@ -337,20 +345,20 @@ void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& option
       next[i] = mu[i] + diagonal[problem.bounded[i]] * (v[problem.bounded[i]] - problem.upper[i]) > 0;
     if (next == active) {
       result.status = Status::NumericalError;
-      result.message = "the active set settled with residual " + std::to_string(result.residual) +
+      result.message = "the active set settled with residual " + number_text(result.residual) +
                        " above tol: the inner KSP solves are not accurate enough (a smaller -ksp_rtol may help)";
       break;
     }
     if (seen.count(next)) {
       result.status = Status::NumericalError;
-      result.message = "the active-set steps cycled at residual " + std::to_string(result.residual) +
+      result.message = "the active-set steps cycled at residual " + number_text(result.residual) +
                        " (try --backend-option method=tao)";
       break;
     }
     if (k >= options.max_iterations) {
       result.status = Status::MaxIterations;
       result.message =
-          "stopped after " + std::to_string(k) + " active-set steps with residual " + std::to_string(result.residual);
+          "stopped after " + std::to_string(k) + " active-set steps with residual " + number_text(result.residual);
       break;
     }
     active = std::move(next);
@@ -423,7 +431,7 @@ void solve_tao(Work& work, const BoundQp& problem, const BoundQpOptions& options
   } else {
     result.status = reason == TAO_DIVERGED_MAXITS ? Status::MaxIterations : Status::NumericalError;
     result.message = std::string("TAO stopped (") + TaoConvergedReasons[reason] + ") at residual " +
-                     std::to_string(result.residual) + " above tol";
+                     number_text(result.residual) + " above tol";
   }
 }
 
