@@ -21,6 +21,8 @@ void check_ipopt_options(const SolveOptions& options);
 void check_nlopt_options(const SolveOptions& options);
 void check_active_set_options(const SolveOptions& options);
 SolveResult solve_active_set(const QuadraticProgram& qp, const SolveOptions& options);
+void check_petsc_options(const SolveOptions& options);
+SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options);
 
 // The solver of qp.K a backend works with: options.K_factor when the caller supplied one,
 // otherwise a fresh one of the kind options.linear_solver names (inner tolerance from

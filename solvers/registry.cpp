@@ -65,6 +65,8 @@ SolveResult dispatch(const QuadraticProgram& qp, const SolveOptions& options) {
       return solve_nlopt(qp, options);
     case Backend::ActiveSet:
       return solve_active_set(qp, options);
+    case Backend::Petsc:
+      return solve_petsc(qp, options);
   }
   throw InputError("backend", "= " + std::to_string(static_cast<int>(options.backend)) + ": not a backend");
 }
@@ -96,6 +98,9 @@ void validate_options(const SolveOptions& options) {
     case Backend::ActiveSet:
       check_active_set_options(options);
       break;
+    case Backend::Petsc:
+      check_petsc_options(options);
+      break;
   }
 }
 
@@ -126,6 +131,8 @@ bool backend_available(Backend backend) {
 #endif
     case Backend::ActiveSet:
       return true;
+    case Backend::Petsc:  // the bound-constrained QP in PETSc, when PETSc was built in
+      return linear_solver_available(LinearSolverKind::Petsc);
   }
   return false;
 }

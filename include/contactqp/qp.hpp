@@ -56,6 +56,7 @@ enum class Backend {
   Ipopt,             // primal interior point (Ipopt with MUMPS) on the QP itself
   Nlopt,             // the dual max θ(λ), λ ≥ 0, by a bound-constrained NLopt method (L-BFGS by default)
   ActiveSet,         // primal-dual active set (semismooth Newton) on the contact-condensed problem
+  Petsc,             // the bound form (rows as bounds on per-node variables) solved by PETSc, under mpirun too
 };
 
 enum class Status {

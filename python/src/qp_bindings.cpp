@@ -146,6 +146,7 @@ void bind_qp(py::module_& m) {
       .value("IPOPT", Backend::Ipopt, "primal interior point (Ipopt with MUMPS) on the QP itself")
       .value("NLOPT", Backend::Nlopt, "the dual by a bound-constrained NLopt method (L-BFGS by default)")
       .value("ACTIVE_SET", Backend::ActiveSet, "primal-dual active set on the contact-condensed problem")
+      .value("PETSC", Backend::Petsc, "the bound form solved by PETSc (active set with KSP solves, or TAO)")
       .def_property_readonly(
           "label", [](Backend b) { return to_string(b); },
           "The name the command line and scene files use, e.g. 'active_set'.");

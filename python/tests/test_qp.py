@@ -10,7 +10,7 @@ from conftest import random_qp, relative_difference, solve_by_enumeration
 def test_version_and_backends():
     assert contactqp.__version__.count(".") == 2
     names = [b.label for b in contactqp.Backend.__members__.values()]
-    assert names == ["uzawa", "uzawa_accel", "ipopt", "nlopt", "active_set"]
+    assert names == ["uzawa", "uzawa_accel", "ipopt", "nlopt", "active_set", "petsc"]
     for b in contactqp.Backend.__members__.values():
         assert contactqp.backend_available(b) == (b in contactqp.available_backends())
         assert contactqp.backend_available(b.label) == contactqp.backend_available(b)

@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "contactqp/errors.hpp"
+#include "contactqp/processes.hpp"
 #include "contactqp/run.hpp"
 #include "contactqp/solve.hpp"
 
@@ -73,6 +74,8 @@ int run_compare(const CompareArguments& arguments) {
   Scene scene = load_scene(solve_arguments.scene_path);
   apply_overrides(solve_arguments, scene.solver);
   const CompareReport report = compare_scene(scene, options);
+  // Under mpirun every rank holds every result: rank 0 alone prints and writes the JSON.
+  if (process_rank() != 0) return report.agree ? 0 : 1;
 
   for (const std::string& warning : report.warnings) std::cerr << "contactqp: warning: " << warning << "\n";
   const std::vector<BackendRun>& runs = report.runs;

@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "contactqp/errors.hpp"
+#include "contactqp/processes.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"contactqp: frictionless contact of elastic bodies with rigid obstacles, as one QP"};
@@ -25,6 +26,9 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  // Every way out goes through agree_on_exit (processes.hpp): under mpirun all ranks end with
+  // the same status and the error line is printed once.
+  std::string error_line;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& help) {
@@ -37,17 +41,18 @@ int main(int argc, char** argv) {
     // One line, like every other bad input.
     std::string text = error.what();
     std::replace(text.begin(), text.end(), '\n', ' ');
-    std::cerr << "contactqp: error: " << text << " (see --help)\n";
-    return 2;
+    error_line = "contactqp: error: " + text + " (see --help)";
+    exit_status = 2;
   } catch (const contactqp::InputError& error) {
-    std::cerr << "contactqp: error: " << error.what() << "\n";
-    return 2;
+    error_line = std::string("contactqp: error: ") + error.what();
+    exit_status = 2;
   } catch (const std::bad_alloc&) {
-    std::cerr << "contactqp: error: out of memory; try a coarser mesh\n";
-    return 1;
+    error_line = "contactqp: error: out of memory; try a coarser mesh";
+    exit_status = 1;
   } catch (const std::exception& error) {
-    std::cerr << "contactqp: error: " << error.what() << "\n";
-    return 1;
+    error_line = std::string("contactqp: error: ") + error.what();
+    exit_status = 1;
   }
-  return exit_status;
+  std::cout << std::flush;
+  return contactqp::agree_on_exit(exit_status, error_line);
 }

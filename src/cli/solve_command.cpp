@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "contactqp/errors.hpp"
+#include "contactqp/processes.hpp"
 #include "contactqp/run.hpp"
 
 namespace contactqp::cli {
@@ -72,6 +73,8 @@ int run_solve(const SolveArguments& arguments) {
   options.no_contact = arguments.no_contact;
   const RunReport report = run_scene(scene, options);
 
+  // Under mpirun every rank holds the whole result: rank 0 alone prints and writes the files.
+  if (process_rank() != 0) return report.result.status == Status::Converged ? 0 : 1;
   for (const std::string& warning : report.warnings) std::cerr << "contactqp: warning: " << warning << "\n";
   std::cout << summary_table(report);
   if (!arguments.json_path.empty()) write_file_atomically(arguments.json_path, result_json(report));

@@ -17,3 +17,13 @@ std::shared_ptr<const LinearSolver> make_petsc_solver(const Eigen::SparseMatrix<
                                                       const LinearSolverOptions& options);
 
 }  // namespace contactqp::detail
+
+namespace contactqp::detail {
+
+// MPI as PETSc started it: -1 (rank) and 0 (size) while MPI does not run or is finalised.
+int mpi_rank();
+int mpi_size();
+// agree_on_exit() (processes.hpp) on MPI_COMM_WORLD.
+int mpi_agree_on_exit(int status, const std::string& error_line, double timeout_seconds);
+
+}  // namespace contactqp::detail

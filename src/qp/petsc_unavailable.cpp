@@ -1,6 +1,7 @@
 // Built instead of petsc_solver.cpp when PETSc is absent: the petsc linear solver reports
 // itself unavailable, and make_linear_solver() refuses it as bad input before any work.
 #include "contactqp/errors.hpp"
+#include "petsc_bound_qp.hpp"
 #include "petsc_solver.hpp"
 
 namespace contactqp::detail {
@@ -11,6 +12,19 @@ void start_petsc_runtime(const std::string&) {}  // Ipopt's sequential MUMPS is 
 
 std::shared_ptr<const LinearSolver> make_petsc_solver(const Eigen::SparseMatrix<double>&, const LinearSolverOptions&) {
   throw InputError("linear_solver", "= \"petsc\": PETSc was not built into this copy of contactqp");
+}
+
+}  // namespace contactqp::detail
+
+namespace contactqp::detail {
+
+int mpi_rank() { return -1; }
+int mpi_size() { return 0; }
+int mpi_agree_on_exit(int status, const std::string&, double) { return status; }  // never called: size 0
+
+bool petsc_bound_qp_available() { return false; }
+BoundQpResult solve_bound_qp_petsc(const BoundQp&, const BoundQpOptions&) {
+  throw InputError("backend", "= \"petsc\": PETSc was not built into this copy of contactqp");
 }
 
 }  // namespace contactqp::detail

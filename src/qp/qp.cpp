@@ -11,7 +11,7 @@ namespace {
 // The one name table of the backends: the CLI, the scenes and the JSON use these names.
 const std::pair<Backend, const char*> kBackendNames[] = {
     {Backend::Uzawa, "uzawa"}, {Backend::UzawaAccelerated, "uzawa_accel"}, {Backend::Ipopt, "ipopt"},
-    {Backend::Nlopt, "nlopt"}, {Backend::ActiveSet, "active_set"},
+    {Backend::Nlopt, "nlopt"}, {Backend::ActiveSet, "active_set"},         {Backend::Petsc, "petsc"},
 };
 
 bool all_finite(const SparseMatrix& A) {

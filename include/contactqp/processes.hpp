@@ -1,0 +1,22 @@
+// Several processes under mpirun (the petsc backend, docs/petsc.md): which one this is, and how
+// they end together. Without MPI every function describes a single process.
+#pragma once
+
+#include <string>
+
+namespace contactqp {
+
+// This process's MPI rank once MPI runs; before that the launcher's (OMPI_COMM_WORLD_RANK,
+// PMIX_RANK or PMI_RANK in the environment), else 0. Only rank 0 prints and writes files.
+int process_rank();
+// The number of MPI processes once MPI runs (the launcher's count before), else 1.
+int process_count();
+
+// How a run ends on every rank at once. Every rank passes its exit status and its error line
+// (empty when it has none); the lowest rank with a line prints it to stderr, once for the run,
+// and the result is the largest status. Collective while MPI runs on several processes. A
+// rank that failed waits at most `timeout_seconds` for the others (they may be stuck in a
+// collective call it left), then prints its line and ends them all (MPI_Abort): never a hang.
+int agree_on_exit(int status, const std::string& error_line, double timeout_seconds = 60);
+
+}  // namespace contactqp

@@ -1,0 +1,27 @@
+// The contact QP as a bound-constrained QP (the petsc backend's form, docs/petsc.md).
+//
+// The rows of B fall into groups that share no column (one group per candidate node: its one
+// or two rows at its free DOFs). Each group's DOFs u_C get new variables v_C = T u_C, where T's
+// first rows are the group's rows of B and the rest an orthonormal basis of their complement;
+// then row i of B u ≤ g is the bound v_i ≤ g_i on one variable. With u = Q v (Q = T⁻¹ per group,
+// the identity elsewhere) the QP becomes  min ½ vᵀ(QᵀKQ)v − (Qᵀf)ᵀv,  still positive definite,
+// and a rigid-body mode r of K becomes Q⁻¹ r. A node with one row has an orthogonal T.
+#pragma once
+
+#include <string>
+
+#include "contactqp/qp.hpp"
+#include "petsc_bound_qp.hpp"
+
+namespace contactqp::detail {
+
+struct BoundForm {
+  SparseMatrix Q;   // u = Q v
+  BoundQp problem;  // bounded[i] is the variable of row i of B, upper = g
+};
+
+// False with `message` set when a group's rows are linearly dependent (the bound form needs
+// independent rows at each node; the other backends accept such rows).
+bool make_bound_form(const QuadraticProgram& qp, BoundForm& form, std::string& message);
+
+}  // namespace contactqp::detail

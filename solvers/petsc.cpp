@@ -1,0 +1,119 @@
+// The petsc backend: the contact QP brought to bound form (bound_form.hpp) and solved by PETSc
+// on the distributed matrix (src/qp/petsc_bound_qp.cpp): a primal-dual active-set loop whose
+// steps are KSP solves (CG + GAMG with the rigid-body modes) by default, TAO with
+// method=tao. docs/petsc.md has the design, its measurements and mpirun.
+//
+//   transform   A = QᵀKQ, b = Qᵀf; row i of Bu ≤ g becomes v_i ≤ g_i     (per node, Eigen)
+//   iterate     the bound QP in PETSc, every rank holding its rows of A
+//   recover     u = Q v, λ = μ
+#include <algorithm>
+
+#include "backend_options.hpp"
+#include "backends.hpp"
+#include "bound_form.hpp"
+#include "contactqp/certificate.hpp"
+#include "contactqp/errors.hpp"
+
+namespace contactqp::detail {
+namespace {
+
+std::string effective_method(const SolveOptions& options) {
+  std::string method = "pdas";
+  for (const auto& [key, value] : options_for(Backend::Petsc, options.backend_options)) {
+    if (key == "method") {
+      if (value != "pdas" && value != "tao")
+        throw InputError(option_field(key), "= \"" + value + "\": not a method of petsc; valid: pdas, tao");
+      method = value;
+    } else {
+      throw InputError(option_field(key), "= \"" + value + "\": not an option of petsc; valid: method");
+    }
+  }
+  return method;
+}
+
+// The relative KKT residual of certificate.hpp without stationarity (which the inner solves
+// hold): primal violation / L, negative multipliers / F, complementarity / (F L).
+double relative_residual(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& mu) {
+  if (mu.size() == 0) return 0;
+  const VectorXd lambda = mu.cwiseMax(0.0);
+  const VectorXd w = qp.g - qp.B * u;
+  const double L = length_scale(qp, u), F = force_scale(qp, u, lambda);
+  const double violation = std::max(0.0, -w.minCoeff());
+  const double negative = std::max(0.0, -mu.minCoeff());
+  const double complementarity = lambda.cwiseProduct(w).cwiseAbs().maxCoeff();
+  auto ratio = [](double x, double scale) { return scale > 0 ? x / scale : x; };
+  return std::max({ratio(violation, L), ratio(negative, F), ratio(complementarity, F * L)});
+}
+
+}  // namespace
+
+void check_petsc_options(const SolveOptions& options) { effective_method(options); }
+
+SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options) {
+  SolveResult result;
+  Stopwatch clock;
+  BoundForm form;
+  if (!make_bound_form(qp, form, result.message)) {
+    result.status = Status::NumericalError;
+    result.u = VectorXd::Zero(qp.n_dofs());
+    result.lambda = VectorXd::Zero(qp.n_constraints());
+    return result;
+  }
+  result.timings.add("transform", clock.seconds());
+
+  BoundQpOptions settings;
+  settings.method = effective_method(options);
+  settings.tol = options.tol;
+  settings.max_iterations = options.max_iterations;
+  settings.petsc_options = options.petsc_options;
+  settings.verbose = options.verbose;
+  settings.residual = [&](const VectorXd& v, const VectorXd& mu) {
+    return relative_residual(qp, VectorXd(form.Q * v), mu);
+  };
+  if (options.observer)
+    settings.observer = [&](int k, const VectorXd& v, const VectorXd& mu) {
+      options.observer(k, VectorXd(form.Q * v), mu);
+    };
+  const BoundQpResult solved = solve_bound_qp_petsc(form.problem, settings);
+  result.timings.add("factorize", solved.setup_seconds);
+  result.timings.add("iterate", solved.iterate_seconds);
+  result.timings.add("solve", solved.iterate_seconds);
+
+  result.u = form.Q * solved.v;
+  result.lambda = solved.mu;
+  result.iterations = solved.iterations;
+  result.warnings = solved.warnings;
+  result.diagnostics["outer_iterations"] = solved.iterations;
+  result.diagnostics["krylov_iterations"] = static_cast<double>(solved.krylov_iterations);
+  result.diagnostics["linear_solves"] = static_cast<double>(solved.linear_solves);
+  result.diagnostics["active_constraints"] = solved.active;
+  result.diagnostics["kkt_residual"] = solved.residual;
+  result.diagnostics["petsc_matrix_mb_per_rank"] = solved.matrix_bytes / 1048576.0;
+  result.diagnostics["petsc_memory_mb_per_rank"] = solved.petsc_bytes / 1048576.0;
+
+  const std::string how = solved.method + "; " + std::to_string(solved.iterations) + " outer steps, " +
+                          std::to_string(solved.krylov_iterations) + " Krylov iterations; " +
+                          std::to_string(qp.n_constraints()) + " candidate rows, " + std::to_string(solved.active) +
+                          " in contact; A " + short_number(solved.matrix_bytes / 1048576.0) + " MiB per rank" +
+                          (options.verbose ? "; PETSc memory per rank " + short_number(solved.petsc_bytes / 1048576.0) +
+                                                 " MiB (A, its working copy and the preconditioner)"
+                                           : std::string());
+  result.status = solved.status;
+  result.message = solved.status == Status::Converged ? "converged: KKT residual " + short_number(solved.residual) +
+                                                            " <= " + short_number(options.tol) + " (" + how + ")"
+                                                      : solved.message + " (" + how + ")";
+
+  // A PETSc solver of K for certify() (θ needs one solve), so that no rank factorises K: the
+  // factor is what the petsc backend is there to avoid.
+  if (options.K_factor) {
+    result.K_factor = options.K_factor;
+  } else {
+    SolveOptions petsc_options = options;
+    petsc_options.linear_solver = LinearSolverKind::Petsc;
+    std::string message;
+    result.K_factor = factor_of_K(qp, petsc_options, result.timings, message);
+  }
+  return result;
+}
+
+}  // namespace contactqp::detail

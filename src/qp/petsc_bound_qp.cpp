@@ -1,0 +1,496 @@
+// The bound-constrained QP of the petsc backend solved by PETSc (petsc_bound_qp.hpp).
+//
+// pdas (the default): the primal-dual active-set method, a semismooth Newton method on
+// μ = max(0, μ + c (v − upper)). Each step fixes the active bounds (v_i = upper_i) and solves the
+// rest with KSP on the full-size matrix whose active rows and columns are replaced by the
+// identity (MatZeroRowsColumns). Keeping the full size keeps the rigid-body near-null space
+// meaningful for GAMG; a reduced matrix (MatCreateSubMatrix of the free rows, what TAO's
+// active-set methods do) loses it. docs/petsc.md has the measurements behind the choice.
+//
+// tao: TAO's bound-constrained methods (TAOBNLS unless -tao_type says otherwise) on the same
+// bound form, kept as the alternative the measurements compare against.
+#include "petsc_bound_qp.hpp"
+
+#include <petscksp.h>
+#include <petsctao.h>
+
+#include <Eigen/QR>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "contactqp/timer.hpp"
+#include "petsc_runtime.hpp"
+
+namespace contactqp::detail {
+namespace {
+
+// The inner stopping rule of petsc_solver.cpp (docs/linear-solvers.md): ‖r‖₂ ≤ 1e-3 · tol · F,
+// so that stationarity stays a tenth of tol; the round-off floor as there.
+constexpr double kInnerFraction = 1e-3;
+constexpr double kRoundOff = 100 * 2.220446049250313e-16;
+constexpr PetscInt kMaxKrylovIterations = 10000;
+
+struct PetscFailure {
+  std::string message;
+};
+
+void check(PetscErrorCode code, const char* what) {
+  if (code) throw PetscFailure{std::string(what) + ": " + error_text(code)};
+}
+
+// The PETSc objects of one solve, released together (under the caller's lock).
+struct Work {
+  Mat A = nullptr, W = nullptr;
+  KSP ksp = nullptr;
+  Tao tao = nullptr;
+  Vec x = nullptr, rhs = nullptr, r = nullptr, b = nullptr, x_all = nullptr, lower = nullptr, upper = nullptr;
+  VecScatter to_all = nullptr;
+  MatNullSpace modes = nullptr;
+  void* default_test = nullptr;
+  PetscInt first = 0, end = 0;  // the rows this rank owns
+  int n = 0;
+  double target = 0;  // the absolute residual the current KSP solve stops at
+  double A_norm = 0;
+  bool options_error = false;
+  double petsc_bytes = 0;  // the most that A, its working copy and the preconditioner held at once
+
+  ~Work() {
+    if (petsc_finalized()) return;
+    for (Vec* v : {&x, &rhs, &r, &b, &x_all, &lower, &upper})
+      if (*v) VecDestroy(v);
+    if (to_all) VecScatterDestroy(&to_all);
+    if (modes) MatNullSpaceDestroy(&modes);
+    if (ksp) KSPDestroy(&ksp);
+    if (tao) TaoDestroy(&tao);
+    if (W) MatDestroy(&W);
+    if (A) MatDestroy(&A);
+    if (default_test) KSPConvergedDefaultDestroy(default_test);
+  }
+
+  // The whole of a distributed vector on every rank.
+  Eigen::VectorXd gather(Vec v) {
+    check(VecScatterBegin(to_all, v, x_all, INSERT_VALUES, SCATTER_FORWARD), "VecScatter");
+    check(VecScatterEnd(to_all, v, x_all, INSERT_VALUES, SCATTER_FORWARD), "VecScatter");
+    const PetscScalar* all = nullptr;
+    VecGetArrayRead(x_all, &all);
+    Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(all, n);
+    VecRestoreArrayRead(x_all, &all);
+    return out;
+  }
+  // The rows this rank owns of a vector every rank holds whole.
+  void set(Vec v, const Eigen::VectorXd& full) {
+    PetscScalar* local = nullptr;
+    VecGetArray(v, &local);
+    for (PetscInt row = first; row < end; ++row) local[row - first] = full[row];
+    VecRestoreArray(v, &local);
+  }
+
+  // KSPConvergedDefault (divergence, -ksp_max_it, a user's -ksp_rtol), then the inner rule.
+  static PetscErrorCode converged(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason, void* context) {
+    Work& work = *static_cast<Work*>(context);
+    PetscCall(KSPConvergedDefault(ksp, it, rnorm, reason, work.default_test));
+    if (*reason != KSP_CONVERGED_ITERATING) return 0;
+    double target = work.target;
+    if (rnorm > target && rnorm <= 1e6 * target) {
+      Vec x = nullptr;
+      PetscReal x_norm = 0;
+      PetscCall(KSPBuildSolution(ksp, nullptr, &x));
+      PetscCall(VecNorm(x, NORM_INFINITY, &x_norm));
+      target = std::max(target, kRoundOff * work.A_norm * x_norm);
+    }
+    if (rnorm <= target) *reason = KSP_CONVERGED_ATOL;
+    return 0;
+  }
+
+  // TAO's objective ½ xᵀAx − bᵀx and gradient Ax − b.
+  static PetscErrorCode objective(Tao, Vec x, PetscReal* value, Vec gradient, void* context) {
+    Work& work = *static_cast<Work*>(context);
+    PetscScalar xAx = 0, bx = 0;
+    PetscCall(MatMult(work.A, x, gradient));
+    PetscCall(VecDot(x, gradient, &xAx));
+    PetscCall(VecDot(work.b, x, &bx));
+    *value = 0.5 * xAx - bx;
+    PetscCall(VecAXPY(gradient, -1.0, work.b));
+    return 0;
+  }
+  static PetscErrorCode hessian(Tao, Vec, Mat, Mat, void*) { return 0; }  // A, constant
+};
+
+void assemble(Work& work, const BoundQp& problem) {
+  const Eigen::SparseMatrix<double>& A = problem.A;
+  PetscInt local_rows = PETSC_DECIDE, global_rows = work.n;
+  check(PetscSplitOwnership(PETSC_COMM_WORLD, &local_rows, &global_rows), "PetscSplitOwnership");
+  MPI_Scan(&local_rows, &work.end, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
+  work.first = work.end - local_rows;
+  check(MatCreate(PETSC_COMM_WORLD, &work.A), "MatCreate");
+  check(MatSetSizes(work.A, local_rows, local_rows, work.n, work.n), "MatSetSizes");
+  check(MatSetType(work.A, MATAIJ), "MatSetType");
+  // A is symmetric with both triangles stored: column j of the column-major A is row j.
+  std::vector<PetscInt> diagonal_block(local_rows, 0), off_diagonal_block(local_rows, 0);
+  for (PetscInt row = work.first; row < work.end; ++row)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, static_cast<int>(row)); it; ++it)
+      ++(it.row() >= work.first && it.row() < work.end ? diagonal_block : off_diagonal_block)[row - work.first];
+  MatMPIAIJSetPreallocation(work.A, 0, diagonal_block.data(), 0, off_diagonal_block.data());
+  MatSeqAIJSetPreallocation(work.A, 0, diagonal_block.data());
+  std::vector<PetscInt> columns;
+  std::vector<PetscScalar> values;
+  for (PetscInt row = work.first; row < work.end; ++row) {
+    columns.clear();
+    values.clear();
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, static_cast<int>(row)); it; ++it) {
+      columns.push_back(it.row());
+      values.push_back(it.value());
+    }
+    check(MatSetValues(work.A, 1, &row, static_cast<PetscInt>(columns.size()), columns.data(), values.data(),
+                       INSERT_VALUES),
+          "MatSetValues");
+  }
+  check(MatAssemblyBegin(work.A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(work.A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  MatNorm(work.A, NORM_INFINITY, &work.A_norm);
+  MatSetOption(work.A, MAT_SYMMETRIC, PETSC_TRUE);
+  MatSetOption(work.A, MAT_SPD, PETSC_TRUE);
+
+  // The near-null space, orthonormalised, for GAMG.
+  const Eigen::MatrixXd& modes = problem.near_null_space;
+  if (modes.cols() > 0 && modes.rows() == work.n) {
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(modes);
+    const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(work.n, modes.cols());
+    std::vector<Vec> vectors(modes.cols());
+    for (Eigen::Index k = 0; k < modes.cols(); ++k) {
+      MatCreateVecs(work.A, &vectors[k], nullptr);
+      work.set(vectors[k], Q.col(k));
+    }
+    const PetscErrorCode code = MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(vectors.size()),
+                                                   vectors.data(), &work.modes);
+    for (Vec& v : vectors) VecDestroy(&v);
+    check(code, "MatNullSpaceCreate");
+    check(MatSetNearNullSpace(work.A, work.modes), "MatSetNearNullSpace");
+  }
+  MatCreateVecs(work.A, &work.x, &work.rhs);
+  VecDuplicate(work.x, &work.r);
+  VecDuplicate(work.x, &work.b);
+  work.set(work.b, problem.b);
+  check(VecScatterCreateToAll(work.x, &work.to_all, &work.x_all), "VecScatterCreateToAll");
+}
+
+std::string reason_text(KSP ksp, PetscInt iterations, double target) {
+  const char* name = nullptr;
+  KSPGetConvergedReasonString(ksp, &name);
+  PetscReal residual = 0;
+  KSPGetResidualNorm(ksp, &residual);
+  std::ostringstream text;
+  text.precision(3);
+  text << "the PETSc KSP did not converge: KSP_" << (name ? name : "unknown reason") << " after " << iterations
+       << " iterations at residual " << residual << " (target " << target << ")";
+  return text.str();
+}
+
+// A phase boundary: every rank learns whether any rank failed, and the lowest failing rank's
+// message, so that all ranks take the same branch (a rank that went on alone into a collective
+// call would wait forever for the one that stopped).
+bool any_rank_failed(std::string& message) {
+  int rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  int failing = message.empty() ? INT_MAX : rank, first = INT_MAX;
+  MPI_Allreduce(&failing, &first, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
+  if (first == INT_MAX) return false;
+  int length = static_cast<int>(message.size());
+  MPI_Bcast(&length, 1, MPI_INT, first, PETSC_COMM_WORLD);
+  message.resize(length);
+  MPI_Bcast(message.data(), length, MPI_CHAR, first, PETSC_COMM_WORLD);
+  if (first != 0) message += " (on rank " + std::to_string(first) + ")";
+  return true;
+}
+
+// The bytes of an AIJ matrix's rows on this rank: a value and a column index per entry, a row
+// pointer per row.
+double matrix_bytes(Mat M) {
+  MatInfo info;
+  PetscInt rows = 0, columns = 0;
+  if (MatGetInfo(M, MAT_LOCAL, &info) || MatGetLocalSize(M, &rows, &columns)) return 0;
+  return info.nz_allocated * (sizeof(PetscScalar) + sizeof(PetscInt)) + (rows + 1.0) * sizeof(PetscInt);
+}
+
+// A, its working copy W and the multigrid hierarchy on this rank: the coarse operators and the
+// interpolations (GAMG's restriction is the transpose of the same matrix); the coarsest
+// level's LU is a few hundred rows and left out. Other preconditioners: A and W only.
+double petsc_bytes(Work& work) {
+  double bytes = matrix_bytes(work.A) + (work.W ? matrix_bytes(work.W) : 0.0);
+  if (!work.ksp) return bytes;
+  PC pc = nullptr;
+  KSPGetPC(work.ksp, &pc);
+  PetscBool multigrid = PETSC_FALSE;
+  PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(pc), &multigrid, PCGAMG, PCMG, "");
+  PetscInt levels = 0;
+  if (!multigrid || PCMGGetLevels(pc, &levels)) return bytes;
+  for (PetscInt level = 0; level < levels; ++level) {
+    KSP smoother = nullptr;
+    Mat op = nullptr;
+    if (level + 1 < levels && !PCMGGetSmoother(pc, level, &smoother) && !KSPGetOperators(smoother, &op, nullptr) && op)
+      bytes += matrix_bytes(op);
+    Mat interpolation = nullptr;
+    if (level > 0 && !PCMGGetInterpolation(pc, level, &interpolation) && interpolation)
+      bytes += matrix_bytes(interpolation);
+  }
+  return bytes;
+}
+
+// A number in a message, to four significant digits ("2.9e-11", not to_string's "0.000000").
+std::string number_text(double x) {
+  std::ostringstream text;
+  text.precision(4);
+  text << x;
+  return text.str();
+}
+
+double inf_norm(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
+
+// The primal-dual active-set loop.
+void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& options, BoundQpResult& result) {
+  const int m = static_cast<int>(problem.bounded.size());
+  check(MatDuplicate(work.A, MAT_COPY_VALUES, &work.W), "MatDuplicate");
+  check(KSPCreate(PETSC_COMM_WORLD, &work.ksp), "KSPCreate");
+  KSPSetType(work.ksp, KSPCG);
+  PC pc = nullptr;
+  KSPGetPC(work.ksp, &pc);
+  PCSetType(pc, PCGAMG);
+  // GAMG set up afresh for each active set: reusing the first step's interpolation (PETSc's
+  // default) reuses its Chebyshev eigenvalue estimates too, which do not hold for the matrix
+  // with fixed rows (KSP_DIVERGED_INDEFINITE_PC on disc-in-vgroove). -pc_gamg_reuse_interpolation
+  // overrides it (docs/petsc.md measures both).
+  PCGAMGSetReuseInterpolation(pc, PETSC_FALSE);
+  KSPSetNormType(work.ksp, KSP_NORM_UNPRECONDITIONED);
+  KSPSetTolerances(work.ksp, 0.0, 0.0, PETSC_DEFAULT, kMaxKrylovIterations);
+  KSPConvergedDefaultCreate(&work.default_test);
+  KSPSetConvergenceTest(work.ksp, Work::converged, &work, nullptr);
+  KSPSetOperators(work.ksp, work.W, work.W);
+  if (PetscErrorCode code = KSPSetFromOptions(work.ksp)) {
+    work.options_error = true;
+    check(code, "KSPSetFromOptions");
+  }
+  KSPSetInitialGuessNonzero(work.ksp, PETSC_TRUE);
+
+  // c_i = A_ii: the semismooth Newton step's weight, in the units that make μ + c (v − upper)
+  // a force.
+  check(MatGetDiagonal(work.A, work.r), "MatGetDiagonal");
+  const Eigen::VectorXd diagonal = work.gather(work.r);
+  const double b_norm = inf_norm(problem.b);
+  // The value on the diagonal of a fixed row: the mean of A's diagonal there, so that the
+  // fixed rows do not stretch the spectrum the smoothers of GAMG are tuned to (a 1 among
+  // entries of another size gave KSP_DIVERGED_INDEFINITE_PC on disc-in-vgroove).
+  double fixed_diagonal = 0;
+  for (int i = 0; i < m; ++i) fixed_diagonal += diagonal[problem.bounded[i]] / m;
+  if (!(fixed_diagonal > 0)) fixed_diagonal = 1;
+
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(work.n), mu = Eigen::VectorXd::Zero(m);
+  std::vector<char> active(m, 0);  // the first step solves without bounds
+  std::set<std::vector<char>> seen;
+  for (int k = 1;; ++k) {
+    seen.insert(active);
+    // The system of this active set: v_i = upper_i on the active bounds, A v = b on the rest.
+    check(MatCopy(work.A, work.W, SAME_NONZERO_PATTERN), "MatCopy");
+    std::vector<PetscInt> rows;
+    Eigen::VectorXd guess = v;
+    for (int i = 0; i < m; ++i)
+      if (active[i]) {
+        guess[problem.bounded[i]] = problem.upper[i];
+        if (problem.bounded[i] >= work.first && problem.bounded[i] < work.end) rows.push_back(problem.bounded[i]);
+      }
+    work.set(work.x, guess);
+    check(VecCopy(work.b, work.rhs), "VecCopy");
+    check(MatZeroRowsColumns(work.W, static_cast<PetscInt>(rows.size()), rows.data(), fixed_diagonal, work.x, work.rhs),
+          "MatZeroRowsColumns");
+    if (work.modes) check(MatSetNearNullSpace(work.W, work.modes), "MatSetNearNullSpace");
+    check(KSPSetOperators(work.ksp, work.W, work.W), "KSPSetOperators");
+    work.target = kInnerFraction * options.tol * std::max(b_norm, inf_norm(mu));
+    if (work.target == 0) work.target = kInnerFraction * options.tol;
+    check(KSPSolve(work.ksp, work.rhs, work.x), "KSPSolve");
+    work.petsc_bytes = std::max(work.petsc_bytes, petsc_bytes(work));
+    PetscInt iterations = 0;
+    KSPGetIterationNumber(work.ksp, &iterations);
+    result.krylov_iterations += iterations;
+    ++result.linear_solves;
+    result.iterations = k;
+    KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+    KSPGetConvergedReason(work.ksp, &reason);
+    if (reason < 0) {
+      result.status = Status::NumericalError;
+      result.message = reason_text(work.ksp, iterations, work.target);
+      break;
+    }
+
+    // μ = b − A v on the active bounds (the force that holds them), 0 on the others.
+    v = work.gather(work.x);
+    check(MatMult(work.A, work.x, work.r), "MatMult");
+    const Eigen::VectorXd Av = work.gather(work.r);
+    for (int i = 0; i < m; ++i) mu[i] = active[i] ? problem.b[problem.bounded[i]] - Av[problem.bounded[i]] : 0.0;
+    if (!v.allFinite() || !mu.allFinite()) {
+      result.status = Status::NumericalError;
+      result.message = "the PETSc KSP returned a solution that is not finite";
+      break;
+    }
+    if (options.observer) options.observer(k, v, mu.cwiseMax(0.0));
+    result.residual = options.residual(v, mu);
+    if (result.residual <= options.tol) {
+      result.status = Status::Converged;
+      break;
+    }
+    std::vector<char> next(m, 0);
+    for (int i = 0; i < m; ++i)
+      next[i] = mu[i] + diagonal[problem.bounded[i]] * (v[problem.bounded[i]] - problem.upper[i]) > 0;
+    if (next == active) {
+      result.status = Status::NumericalError;
+      result.message = "the active set settled with residual " + number_text(result.residual) +
+                       " above tol: the inner KSP solves are not accurate enough (a smaller -ksp_rtol may help)";
+      break;
+    }
+    if (seen.count(next)) {
+      result.status = Status::NumericalError;
+      result.message = "the active-set steps cycled at residual " + number_text(result.residual) +
+                       " (try --backend-option method=tao)";
+      break;
+    }
+    if (k >= options.max_iterations) {
+      result.status = Status::MaxIterations;
+      result.message =
+          "stopped after " + std::to_string(k) + " active-set steps with residual " + number_text(result.residual);
+      break;
+    }
+    active = std::move(next);
+  }
+  result.v = v;
+  result.mu = mu.cwiseMax(0.0);
+  result.active = static_cast<int>(std::count(active.begin(), active.end(), 1));
+  KSPType type = nullptr;
+  PCType pc_type = nullptr;
+  KSPGetType(work.ksp, &type);
+  KSPGetPC(work.ksp, &pc);
+  PCGetType(pc, &pc_type);
+  result.method = std::string("pdas, ") + (type ? type : "?") + " + " + (pc_type ? pc_type : "?") +
+                  (work.modes ? ", " + std::to_string(problem.near_null_space.cols()) + " near-null modes" : "");
+}
+
+// TAO's bound-constrained methods on the same problem.
+void solve_tao(Work& work, const BoundQp& problem, const BoundQpOptions& options, BoundQpResult& result) {
+  const int m = static_cast<int>(problem.bounded.size());
+  Eigen::VectorXd lower = Eigen::VectorXd::Constant(work.n, PETSC_NINFINITY);
+  Eigen::VectorXd upper = Eigen::VectorXd::Constant(work.n, PETSC_INFINITY);
+  for (int i = 0; i < m; ++i) upper[problem.bounded[i]] = problem.upper[i];
+  VecDuplicate(work.x, &work.lower);
+  VecDuplicate(work.x, &work.upper);
+  work.set(work.lower, lower);
+  work.set(work.upper, upper);
+  work.set(work.x, Eigen::VectorXd(upper.cwiseMin(0.0)));
+
+  check(TaoCreate(PETSC_COMM_WORLD, &work.tao), "TaoCreate");
+  TaoSetType(work.tao, TAOBNLS);
+  TaoSetSolution(work.tao, work.x);
+  TaoSetVariableBounds(work.tao, work.lower, work.upper);
+  TaoSetObjectiveAndGradient(work.tao, nullptr, Work::objective, &work);
+  TaoSetHessian(work.tao, work.A, work.A, Work::hessian, &work);
+  const double gatol = kInnerFraction * options.tol * std::max(inf_norm(problem.b), 1e-300);
+  TaoSetTolerances(work.tao, gatol, 0.0, 0.0);
+  TaoSetMaximumIterations(work.tao, options.max_iterations);
+  if (PetscErrorCode code = TaoSetFromOptions(work.tao)) {
+    work.options_error = true;
+    check(code, "TaoSetFromOptions");
+  }
+  check(TaoSolve(work.tao), "TaoSolve");
+  work.petsc_bytes = petsc_bytes(work);  // A (TAO's own reduced matrices are not counted)
+  TaoConvergedReason reason = TAO_CONTINUE_ITERATING;
+  TaoGetConvergedReason(work.tao, &reason);
+  PetscInt iterations = 0, linear = 0;
+  TaoGetIterationNumber(work.tao, &iterations);
+  TaoGetLinearSolveIterations(work.tao, &linear);
+  result.iterations = static_cast<int>(iterations);
+  result.krylov_iterations = linear;
+
+  Vec solution = nullptr;
+  TaoGetSolution(work.tao, &solution);
+  result.v = work.gather(solution);
+  check(MatMult(work.A, solution, work.r), "MatMult");
+  const Eigen::VectorXd Av = work.gather(work.r);
+  Eigen::VectorXd mu(m);
+  for (int i = 0; i < m; ++i) mu[i] = problem.b[problem.bounded[i]] - Av[problem.bounded[i]];
+  result.mu = mu.cwiseMax(0.0);
+  result.active = static_cast<int>((result.mu.array() > 0).count());
+  result.residual = options.residual(result.v, mu);
+  TaoType type = nullptr;
+  TaoGetType(work.tao, &type);
+  result.method = std::string("tao ") + (type ? type : "?");
+  if (!result.v.allFinite()) {
+    result.status = Status::NumericalError;
+    result.message = "TAO returned a solution that is not finite";
+  } else if (result.residual <= options.tol) {
+    result.status = Status::Converged;
+  } else {
+    result.status = reason == TAO_DIVERGED_MAXITS ? Status::MaxIterations : Status::NumericalError;
+    result.message = std::string("TAO stopped (") + TaoConvergedReasons[reason] + ") at residual " +
+                     number_text(result.residual) + " above tol";
+  }
+}
+
+}  // namespace
+
+bool petsc_bound_qp_available() { return true; }
+
+BoundQpResult solve_bound_qp_petsc(const BoundQp& problem, const BoundQpOptions& options) {
+  if (options.method != "pdas" && options.method != "tao")
+    throw InputError("method", "= \"" + options.method + "\": not a method of the petsc backend; valid: pdas, tao");
+  BoundQpResult result;
+  bool options_error = false;
+  {
+    std::lock_guard<std::mutex> lock(petsc_mutex());
+    PetscRuntime& runtime = PetscRuntime::instance(options.petsc_options);
+    runtime.use_options(options.petsc_options);
+    const long generation = runtime.generation();
+    Work work;
+    work.n = static_cast<int>(problem.A.rows());
+    std::string failure;
+    Stopwatch clock;
+    try {
+      assemble(work, problem);
+    } catch (const PetscFailure& error) {
+      failure = error.message;
+    }
+    result.setup_seconds = clock.seconds();
+    if (!any_rank_failed(failure)) {
+      clock.restart();
+      try {
+        if (options.method == "pdas")
+          solve_pdas(work, problem, options, result);
+        else
+          solve_tao(work, problem, options, result);
+      } catch (const PetscFailure& error) {
+        failure = error.message;
+      }
+      result.iterate_seconds = clock.seconds();
+      options_error = work.options_error;
+      any_rank_failed(failure);
+    }
+    if (!failure.empty()) {
+      result.status = Status::NumericalError;
+      result.message = failure;
+    } else {
+      double mine[2] = {matrix_bytes(work.A), work.petsc_bytes}, largest[2] = {0, 0};
+      MPI_Allreduce(mine, largest, 2, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
+      result.matrix_bytes = largest[0];
+      result.petsc_bytes = largest[1];
+    }
+    if (runtime.generation() == generation)
+      for (const std::string& option : runtime.unused(options.petsc_options))
+        result.warnings.push_back("PETSc option " + option + " was not used (PETSc's -options_left)");
+  }
+  if (options_error) throw InputError("petsc_options", "= \"" + options.petsc_options + "\": " + result.message);
+  if (result.v.size() != problem.A.rows()) result.v = Eigen::VectorXd::Zero(problem.A.rows());
+  if (result.mu.size() != static_cast<Eigen::Index>(problem.bounded.size()))
+    result.mu = Eigen::VectorXd::Zero(problem.bounded.size());
+  return result;
+}
+
+}  // namespace contactqp::detail

@@ -1,0 +1,68 @@
+// A bound-constrained QP solved by PETSc on the distributed matrix, seen from the rest of
+// contactqp: no PETSc header here. The petsc backend (solvers/petsc.cpp) brings the contact QP
+// to this form; petsc_bound_qp.cpp solves it (petsc_unavailable.cpp when PETSc is absent).
+//
+//     minimise  ½ vᵀ A v − bᵀ v     subject to   v_i ≤ upper_i  for i in bounded
+//
+// The multiplier μ_i ≥ 0 of each bound satisfies A v − b + Σ μ_i e_i = 0 at the solution.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "contactqp/qp.hpp"
+
+namespace contactqp::detail {
+
+struct BoundQp {
+  Eigen::SparseMatrix<double> A;    // n × n, symmetric positive definite, both triangles stored
+  Eigen::VectorXd b;                // n
+  std::vector<int> bounded;         // the components with an upper bound, increasing
+  Eigen::VectorXd upper;            // one bound per entry of `bounded`
+  Eigen::MatrixXd near_null_space;  // n × k (rigid-body modes in these variables), or empty
+};
+
+struct BoundQpOptions {
+  // "pdas": primal-dual active set (semismooth Newton), each step one KSP solve (CG + GAMG) on
+  // the full-size matrix with the active rows and columns replaced by the identity.
+  // "tao": a TAO bound-constrained method (-tao_type, TAOBNLS unless the options say otherwise).
+  std::string method = "pdas";
+  double tol = 1e-8;
+  int max_iterations = 10000;
+  std::string petsc_options;
+  bool verbose = false;
+  // The relative KKT residual of an iterate in the caller's terms (v and μ on every rank):
+  // the loop stops when it is ≤ tol. Stationarity holds to the inner tolerance by construction.
+  std::function<double(const Eigen::VectorXd& v, const Eigen::VectorXd& mu)> residual;
+  std::function<void(int k, const Eigen::VectorXd& v, const Eigen::VectorXd& mu)> observer;  // may be empty
+};
+
+struct BoundQpResult {
+  Status status = Status::NumericalError;
+  std::string message;
+  Eigen::VectorXd v, mu;  // on every rank; μ has one entry per bounded component, ≥ 0
+  int iterations = 0;     // outer: active-set steps, or TAO's iterations
+  long long krylov_iterations = 0;
+  long long linear_solves = 0;
+  int active = 0;              // bounds active at the end
+  double residual = 0;         // the caller's residual at the end
+  double setup_seconds = 0;    // the matrix into PETSc
+  double iterate_seconds = 0;  // the outer loop
+  std::string method;          // what ran, e.g. "pdas, cg + gamg, 3 near-null modes"
+  // Memory per rank, the largest over the ranks (MatGetInfo): A's PETSc storage, and the most
+  // that A, its working copy and the multigrid hierarchy (coarse operators, interpolations)
+  // held at once.
+  double matrix_bytes = 0;
+  double petsc_bytes = 0;
+  std::vector<std::string> warnings;
+};
+
+bool petsc_bound_qp_available();
+// Never throws on a numerical failure (status and message say it); InputError for bad PETSc
+// options or an unknown method. Collective: every rank calls it with the same problem.
+BoundQpResult solve_bound_qp_petsc(const BoundQp& problem, const BoundQpOptions& options);
+
+}  // namespace contactqp::detail

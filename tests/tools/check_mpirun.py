@@ -1,0 +1,84 @@
+#!/usr/bin/python3
+"""ctest entry for `mpirun -n 2 contactqp solve SCENE --backend petsc` (docs/petsc.md): the run
+converges, prints its summary once and writes its files once; u and the contact forces agree
+with active_set (u <= 1e-6, lambda <= 1e-5, relative 2-norms) and with the same run on one
+rank (1e-8); bad input under mpirun ends both ranks with exit status 2 and one line.
+
+usage: check_mpirun.py CONTACTQP MPIEXEC SCENE WORKDIR"""
+import os
+import subprocess
+import sys
+
+import numpy
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy
+
+
+def read(path):
+    reader = vtk.vtkXMLUnstructuredGridReader()
+    reader.SetFileName(path)
+    reader.Update()
+    data = reader.GetOutput().GetPointData()
+    return (vtk_to_numpy(data.GetArray("displacement")).ravel(), vtk_to_numpy(data.GetArray("contact_force")).ravel())
+
+
+def run(command, env):
+    done = subprocess.run(command, env=env, capture_output=True, text=True, timeout=600)
+    return done.returncode, done.stdout, done.stderr
+
+
+def relative(a, b):
+    return numpy.linalg.norm(a - b) / max(numpy.linalg.norm(b), 1e-300)
+
+
+def main(cli, mpiexec, scene, workdir):
+    os.makedirs(workdir, exist_ok=True)
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
+    mpi = [mpiexec, "-n", "2", "--oversubscribe"]
+    failures = []
+
+    def check(condition, text):
+        print(("ok   " if condition else "FAIL ") + text)
+        if not condition:
+            failures.append(text)
+
+    paths = {name: os.path.join(workdir, name + ".vtu") for name in ("active_set", "petsc1", "petsc2")}
+    json2 = os.path.join(workdir, "petsc2.json")
+    for path in list(paths.values()) + [json2]:
+        if os.path.exists(path):
+            os.remove(path)
+    code, out, err = run([cli, "solve", scene, "--backend", "active_set", "--tol", "1e-10", "--vtu", paths["active_set"]], env)
+    check(code == 0, "active_set converged (exit %d) %s" % (code, err.strip()))
+    code, out, err = run([cli, "solve", scene, "--backend", "petsc", "--tol", "1e-10", "--vtu", paths["petsc1"]], env)
+    check(code == 0, "petsc on 1 rank converged (exit %d) %s" % (code, err.strip()))
+    code, out, err = run(mpi + [cli, "solve", scene, "--backend", "petsc", "--tol", "1e-10", "--vtu", paths["petsc2"],
+                               "--json", json2], env)
+    check(code == 0, "mpirun -n 2 petsc converged (exit %d) %s" % (code, err.strip()))
+    check(out.count("certificate ") == 1, "the summary is printed once (%d times)" % out.count("certificate "))
+    leftovers = [name for name in os.listdir(workdir) if ".tmp" in name or name.startswith(".")]
+    check(not leftovers, "no temporary files left: %s" % leftovers)
+    if all(os.path.exists(p) for p in paths.values()):
+        u_a, l_a = read(paths["active_set"])
+        u_1, l_1 = read(paths["petsc1"])
+        u_2, l_2 = read(paths["petsc2"])
+        print("u: 2 ranks vs active_set %.3e, 1 vs 2 ranks %.3e" % (relative(u_2, u_a), relative(u_2, u_1)))
+        print("lambda: 2 ranks vs active_set %.3e, 1 vs 2 ranks %.3e" % (relative(l_2, l_a), relative(l_2, l_1)))
+        check(relative(u_2, u_a) <= 1e-6, "u agrees with active_set to 1e-6")
+        check(relative(l_2, l_a) <= 1e-5, "lambda agrees with active_set to 1e-5")
+        check(relative(u_2, u_1) <= 1e-8, "u on 1 and 2 ranks agree to 1e-8")
+        check(relative(l_2, l_1) <= 1e-8, "lambda on 1 and 2 ranks agree to 1e-8")
+    # Bad input found after PETSc started (on every rank): exit 2, one line for the run.
+    code, out, err = run(mpi + [cli, "solve", scene, "--backend", "petsc", "--petsc-options=-ksp_type no_such_ksp"], env)
+    # mpirun adds its own notice of a non-zero exit; contactqp's part is one line.
+    lines = [line for line in err.splitlines() if line.startswith("contactqp")]
+    check(code == 2, "a bad PETSc option under mpirun exits 2 (got %d)" % code)
+    check(len(lines) == 1 and "petsc_options" in lines[0], "one line names petsc_options: %s" % lines)
+    # Bad input found before (the same on every rank): exit 2, one line.
+    code, out, err = run(mpi + [cli, "solve", scene, "--backend", "petsc", "--tol", "7"], env)
+    lines = [line for line in err.splitlines() if line.startswith("contactqp")]
+    check(code == 2 and len(lines) == 1 and "--tol" in lines[0], "bad --tol under mpirun: exit %d, %s" % (code, lines))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(*sys.argv[1:5]))
