@@ -73,6 +73,7 @@ int run_solve(const SolveArguments& arguments) {
   options.build.max_elements = arguments.max_elements;
   options.no_contact = arguments.no_contact;
   RunReport report;
+  std::string memory_line;
   {
     ProgressLine progress(!arguments.quiet);
     PhaseMemory memory;
@@ -104,8 +105,9 @@ int run_solve(const SolveArguments& arguments) {
     timings.add("total", report.timings.get("total") + write_seconds);
     report.timings = timings;
     if (!arguments.json_path.empty()) write_file_atomically(arguments.json_path, result_json(report));
-    if (arguments.phase_memory) std::cerr << memory.finish();
+    if (arguments.phase_memory) memory_line = memory.finish();
   }
+  std::cerr << memory_line;  // after the progress line is erased
   for (const std::string& warning : report.warnings) std::cerr << "contactqp: warning: " << warning << "\n";
   std::cout << summary_table(report);
   return report.result.status == Status::Converged ? 0 : 1;

@@ -43,8 +43,8 @@ void write_gmsh_file(const Mesh& mesh, const std::string& path) {
   const bool reorder = mesh.type() == ElementType::Tet10;
   std::vector<std::size_t> element_nodes(mesh.elements.size());
   for (std::size_t k = 0; k < element_nodes.size(); ++k)
-    element_nodes[k] = 1 + static_cast<std::size_t>(reorder ? mesh.elements[k - k % npe + kGmshTet10[k % npe]]
-                                                            : mesh.elements[k]);
+    element_nodes[k] =
+        1 + static_cast<std::size_t>(reorder ? mesh.elements[k - k % npe + kGmshTet10[k % npe]] : mesh.elements[k]);
   std::size_t next_element = 1;
   auto element_tags = [&next_element](std::size_t n) {
     std::vector<std::size_t> tags(n);
