@@ -8,6 +8,7 @@
 // read-only pointers), so it stays valid after the scene and the options are gone.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,6 +28,9 @@ namespace contactqp {
 struct RunOptions {
   BuildOptions build;       // mesh limits (max_elements)
   bool no_contact = false;  // drop the contact rows: one linear solve of the same K (the unit of cost)
+  // Called as each phase starts: "mesh" (with the model), "assemble", "solve", "certify",
+  // "postprocess". For a progress display; empty: not called.
+  std::function<void(const char* phase)> on_phase;
 };
 
 // Validates the solver options (InputError naming the field, before any work), builds the

@@ -27,6 +27,8 @@ struct SolveArguments {
   std::string json_path, csv_path, vtu_path;
   long long max_elements = BuildOptions{}.max_elements;
   bool verbose = false;
+  bool quiet = false;         // solve: no progress line
+  bool phase_memory = false;  // solve: the peak memory of each phase on stderr
   bool no_contact = false;    // drop the contact rows: one linear solve of the same K
   std::string ordering;       // empty: SolveOptions' default (amd)
   std::string linear_solver;  // empty: the scene's solver.linear_solver (default cholmod)
@@ -39,6 +41,7 @@ void add_solve_command(CLI::App& app, int& exit_status);
 // --linear-solver and --petsc-options, shared by solve and compare.
 void add_linear_solver_options(CLI::App& command, SolveArguments& arguments);
 void add_compare_command(CLI::App& app, int& exit_status);
+void add_mesh_command(CLI::App& app, int& exit_status);  // mesh_command.cpp
 
 // The command line's solver settings over the scene's (InputError on a bad value).
 void apply_overrides(const SolveArguments& arguments, SolveOptions& options);

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   int exit_status = 0;
   contactqp::cli::add_solve_command(app, exit_status);
   contactqp::cli::add_compare_command(app, exit_status);
+  contactqp::cli::add_mesh_command(app, exit_status);
   if (argc > 1 && argv[1][0] != '-') {
     std::string valid;
     bool known = false;

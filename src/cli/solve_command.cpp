@@ -7,6 +7,8 @@
 #include "contactqp/errors.hpp"
 #include "contactqp/processes.hpp"
 #include "contactqp/run.hpp"
+#include "phase_memory.hpp"
+#include "progress.hpp"
 
 namespace contactqp::cli {
 
@@ -71,15 +73,48 @@ int run_solve(const SolveArguments& arguments) {
   RunOptions options;
   options.build.max_elements = arguments.max_elements;
   options.no_contact = arguments.no_contact;
-  const RunReport report = run_scene(scene, options);
-
-  // Under mpirun every rank holds the whole result: rank 0 alone prints and writes the files.
-  if (process_rank() != 0) return report.result.status == Status::Converged ? 0 : 1;
+  RunReport report;
+  std::string memory_line;
+  {
+    // Under mpirun every rank holds the whole result: rank 0 alone shows progress, prints and
+    // writes the files.
+    const bool writer = process_rank() == 0;
+    ProgressLine progress(!arguments.quiet && writer);
+    PhaseMemory memory;
+    options.on_phase = [&progress, &memory, &arguments](const char* phase) {
+      progress.set(phase);
+      if (arguments.phase_memory) memory.start(phase);
+    };
+    report = run_scene(scene, options);
+    if (!writer) return report.result.status == Status::Converged ? 0 : 1;
+    // The output files: the CSV and the ParaView file, timed as "write", then the JSON, which
+    // records that time.
+    progress.set("write", 0);
+    if (arguments.phase_memory) memory.start("write");
+    Stopwatch clock;
+    const std::pair<const std::string*, std::string (*)(const RunReport&)> files[] = {
+        {&arguments.csv_path, profile_csv}, {&arguments.vtu_path, vtu_document}};
+    const int n_files = !arguments.json_path.empty() + !arguments.csv_path.empty() + !arguments.vtu_path.empty();
+    int written = 0;
+    for (const auto& [path, document] : files) {
+      if (path->empty()) continue;
+      write_file_atomically(*path, document(report));
+      progress.set("write", static_cast<double>(++written) / n_files);
+    }
+    // "write" goes before "total", which then covers it too (all but the JSON's own writing).
+    const double write_seconds = clock.seconds();
+    Timings timings;
+    for (const auto& [phase, seconds] : report.timings.phases())
+      if (phase != "total") timings.add(phase, seconds);
+    timings.add("write", write_seconds);
+    timings.add("total", report.timings.get("total") + write_seconds);
+    report.timings = timings;
+    if (!arguments.json_path.empty()) write_file_atomically(arguments.json_path, result_json(report));
+    if (arguments.phase_memory) memory_line = memory.finish();
+  }
+  std::cerr << memory_line;  // after the progress line is erased
   for (const std::string& warning : report.warnings) std::cerr << "contactqp: warning: " << warning << "\n";
   std::cout << summary_table(report);
-  if (!arguments.json_path.empty()) write_file_atomically(arguments.json_path, result_json(report));
-  if (!arguments.csv_path.empty()) write_file_atomically(arguments.csv_path, profile_csv(report));
-  if (!arguments.vtu_path.empty()) write_file_atomically(arguments.vtu_path, vtu_document(report));
   return report.result.status == Status::Converged ? 0 : 1;
 }
 
@@ -123,6 +158,9 @@ void add_solve_command(CLI::App& app, int& exit_status) {
   command->add_option("--backend-option", arguments->backend_options,
                       "key=value passed to the backend (repeatable); ipopt.key=value addresses one backend");
   command->add_flag("--verbose", arguments->verbose, "Let the backend print its log");
+  command->add_flag("--phase-memory", arguments->phase_memory,
+                    "Print the peak resident memory of each phase on stderr (Linux /proc)");
+  command->add_flag("--quiet", arguments->quiet, "No progress line on stderr (shown on a terminal after 2 s)");
   command->add_option("--ordering", arguments->ordering, "Fill-reducing ordering of K: amd (default), metis or auto");
   add_linear_solver_options(*command, *arguments);
   command->add_flag("--no-contact", arguments->no_contact,

@@ -7,6 +7,7 @@
 #include "../model/rigid_body_modes.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/model.hpp"
+#include "stiffness_matrix.hpp"
 
 namespace contactqp {
 namespace {
@@ -52,41 +53,21 @@ void refuse_unrepresentable(const Model& model, const QuadraticProgram& qp) {
 
 }  // namespace
 
+namespace detail {
+Eigen::MatrixXd dof_frame_rotated(const Model& model, const int* v, int npe, Eigen::MatrixXd Ke) {
+  rotate_to_dof_frames(model, v, npe, Ke);
+  return Ke;
+}
+}  // namespace detail
+
 QuadraticProgram assemble_qp(Model& model) {
   Stopwatch clock;
   const Mesh& mesh = model.mesh;
-  const ElementLaw law = element_law(model.scene);
-  const double thickness = model.scene.body.thickness;
-  const int npe = mesh.nodes_per_element();
   const int dim = mesh.dim;
-  const ElementType type = mesh.type();
 
   QuadraticProgram qp;
   qp.f = Eigen::VectorXd::Zero(model.n_free);
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<size_t>(mesh.n_elements()) * dim * dim * npe * npe);
-  std::vector<Eigen::Vector3d> coordinates(npe);
-  std::vector<int> dofs(dim * npe);
-  for (int e = 0; e < mesh.n_elements(); ++e) {
-    const int* v = mesh.element(e);
-    for (int i = 0; i < npe; ++i) {
-      coordinates[i] = mesh.nodes[v[i]];
-      for (int c = 0; c < dim; ++c) dofs[dim * i + c] = dim * v[i] + c;
-    }
-    Eigen::MatrixXd Ke = element_stiffness(type, coordinates.data(), law, thickness);
-    rotate_to_dof_frames(model, v, npe, Ke);
-    for (int i = 0; i < dim * npe; ++i) {
-      const int row = model.free_index[dofs[i]];
-      if (row < 0) continue;
-      for (int j = 0; j < dim * npe; ++j) {
-        const int column = model.free_index[dofs[j]];
-        if (column >= 0)
-          triplets.emplace_back(row, column, Ke(i, j));
-        else
-          qp.f[row] -= Ke(i, j) * model.prescribed[dofs[j]];  // prescribed displacement to the right-hand side
-      }
-    }
-  }
+  detail::assemble_stiffness(model, qp.K, qp.f);
   // Force loads: f_a = Tᵀ f_x at each node (T its DOF frame); forces at prescribed DOFs go
   // to the reactions.
   for (int node = 0; node < mesh.n_nodes(); ++node) {
@@ -96,10 +77,6 @@ QuadraticProgram assemble_qp(Model& model) {
     for (int c = 0; c < dim; ++c)
       if (model.free_index[dim * node + c] >= 0) qp.f[model.free_index[dim * node + c]] += force[c];
   }
-  qp.K.resize(model.n_free, model.n_free);
-  qp.K.setFromTriplets(triplets.begin(), triplets.end());
-  qp.K.makeCompressed();
-  triplets = {};
   refuse_unrepresentable(model, qp);
   detail::add_contact_rows(model, qp);
   qp.near_null_space = detail::rigid_body_modes(model);  // for AMG in an iterative solver of K

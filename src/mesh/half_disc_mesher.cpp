@@ -7,6 +7,7 @@
 
 #include "gmsh_model.hpp"
 #include "graded_size.hpp"
+#include "refine.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -71,12 +72,29 @@ Mesh mesh_half_disc(const HalfDiscMeshRequest& request) {
 
   const double first = request.fine.empty() ? phi_start : request.fine.front().first;
   const int closest = std::lower_bound(breaks.begin(), breaks.end(), first - 1e-9) - breaks.begin();
-  set_graded_size_field(unit_sizes(request), fine_arcs, total_length(request.fine),
+  GradedSize sizes = unit_sizes(request);
+  const double coarsening = std::ldexp(1.0, request.refinements);
+  sizes.size *= coarsening;
+  sizes.contact_size *= coarsening;
+  sizes.grading *= coarsening;
+  set_graded_size_field(sizes, fine_arcs, total_length(request.fine),
                         points[std::min<size_t>(closest, points.size() - 1)]);
-  gmsh::option::setNumber("Mesh.ElementOrder", request.order);
+  gmsh::option::setNumber("Mesh.ElementOrder", request.refinements > 0 ? 1 : request.order);
   gmsh::model::mesh::generate(2);
   throw_if_gmsh_failed();
-  Mesh mesh = mesh_from_gmsh(request.radius);
+  Mesh mesh;
+  if (request.refinements == 0) {
+    mesh = mesh_from_gmsh(request.radius);
+  } else {
+    // Refined in units of R, where the arc is the unit circle about (0, 1), then scaled.
+    const auto onto_arc = [](const std::string& boundary, const Eigen::Vector3d& x) -> Eigen::Vector3d {
+      if (boundary != "arc") return x;
+      const Eigen::Vector3d centre(0.0, 1.0, 0.0);
+      return centre + (x - centre).normalized();
+    };
+    mesh = refine_triangles(mesh_from_gmsh(1.0), request.refinements, request.order, onto_arc);
+    for (Eigen::Vector3d& x : mesh.nodes) x *= request.radius;
+  }
   mesh.regions.clear();  // the generated body has no named regions
   return mesh;
 }

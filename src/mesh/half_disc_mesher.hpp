@@ -17,6 +17,10 @@ struct HalfDiscMeshRequest {
   double contact_size = 0.01;  // element size along the fine arc (length)
   double grading = 0.25;       // size growth per unit distance from the fine arc
   int order = 1;
+  // Gmsh meshes sizes 2^refinements times larger (the grading too, so the refined size is the
+  // same function of the distance) and each triangle is split into four that many times, its
+  // new arc nodes put back on the circle: Gmsh's time grows faster than its triangles.
+  int refinements = 0;
   Intervals fine;  // the fine arcs, as angles φ; a single point when nothing can touch
 };
 

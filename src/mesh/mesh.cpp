@@ -18,49 +18,43 @@ namespace {
 double cross2(const Eigen::Vector3d& u, const Eigen::Vector3d& v) { return u.x() * v.y() - u.y() * v.x(); }
 
 // The key of a face by its sorted vertices: an edge (a, b) in 2D, a triangle (a, b, c) in 3D.
-struct FaceKey {
-  std::array<int, 3> v{{-1, -1, -1}};
-  bool operator==(const FaceKey& other) const { return v == other.v; }
-};
-struct FaceKeyHash {
-  std::size_t operator()(const FaceKey& k) const {
-    std::size_t h = static_cast<std::size_t>(k.v[0]);
-    h = h * 1000003u ^ static_cast<std::size_t>(k.v[1]);
-    return h * 1000003u ^ static_cast<std::size_t>(k.v[2]);
-  }
+// The elements at each vertex, ascending: those at node n are element[first[n] .. first[n + 1]).
+// A face of a simplex is any dim of its vertices, so the elements having a face as a side are
+// the elements at its first vertex that hold the others. This replaced a hash map from faces
+// to element lists, whose allocation per face took most of orient() and outer_boundary().
+struct VertexElements {
+  std::vector<int> first, element;
 };
 
-FaceKey key_of(const int* vertices, int n) {
-  FaceKey key;
-  for (int k = 0; k < n; ++k) key.v[k] = vertices[k];
-  // Two or three entries: compare-and-swap (std::sort here draws a false -Warray-bounds from GCC 12).
-  auto order = [&](int i, int j) {
-    if (key.v[i] > key.v[j]) std::swap(key.v[i], key.v[j]);
-  };
-  order(0, 1);
-  if (n == 3) {
-    order(1, 2);
-    order(0, 1);
-  }
-  return key;
+VertexElements vertex_elements(const Mesh& mesh) {
+  const int nv = mesh.dim + 1;
+  VertexElements at;
+  at.first.assign(mesh.n_nodes() + 1, 0);
+  for (int e = 0; e < mesh.n_elements(); ++e)
+    for (int k = 0; k < nv; ++k) ++at.first[mesh.element(e)[k] + 1];
+  for (int n = 0; n < mesh.n_nodes(); ++n) at.first[n + 1] += at.first[n];
+  at.element.resize(at.first.back());
+  std::vector<int> next(at.first.begin(), at.first.end() - 1);
+  for (int e = 0; e < mesh.n_elements(); ++e)
+    for (int k = 0; k < nv; ++k) at.element[next[mesh.element(e)[k]]++] = e;
+  return at;
 }
 
-// For each face (by its vertices), the elements that have it as a side, and which local face.
-using FaceMap = std::unordered_map<FaceKey, std::vector<std::pair<int, int>>, FaceKeyHash>;
+bool has_vertices(const Mesh& mesh, int e, const int* vertices, int n) {
+  const int* v = mesh.element(e);
+  for (int i = 0; i < n; ++i)
+    if (std::find(v, v + mesh.dim + 1, vertices[i]) == v + mesh.dim + 1) return false;
+  return true;
+}
 
-FaceMap elements_of_faces(const Mesh& mesh) {
-  FaceMap map;
-  const auto& faces = element_faces(mesh.type());
-  map.reserve(faces.size() * mesh.n_elements());
-  int vertices[3];
-  for (int e = 0; e < mesh.n_elements(); ++e) {
-    const int* v = mesh.element(e);
-    for (size_t f = 0; f < faces.size(); ++f) {
-      for (int k = 0; k < mesh.dim; ++k) vertices[k] = v[faces[f][k]];
-      map[key_of(vertices, mesh.dim)].emplace_back(e, static_cast<int>(f));
-    }
+// The lowest-numbered element other than `skip` that has the face of these dim vertices as a
+// side, or −1.
+int element_with_face(const Mesh& mesh, const VertexElements& at, const int* vertices, int skip = -1) {
+  for (int k = at.first[vertices[0]]; k < at.first[vertices[0] + 1]; ++k) {
+    const int e = at.element[k];
+    if (e != skip && has_vertices(mesh, e, vertices + 1, mesh.dim - 1)) return e;
   }
-  return map;
+  return -1;
 }
 
 // Where the Jacobian of a curved quadratic element is sampled: vertices, mid-sides, centroid
@@ -258,19 +252,20 @@ void orient(Mesh& mesh) {
     const std::string defect = element_defect(mesh, e, largest);
     if (!defect.empty()) throw std::runtime_error("element " + std::to_string(e) + " is " + defect);
   }
-  const FaceMap element_of_face = elements_of_faces(mesh);
+  const VertexElements at = vertex_elements(mesh);
   const int nv = mesh.nodes_per_element() == 3 || mesh.nodes_per_element() == 6 ? 3 : 4;  // vertices per element
   // A boundary face points outwards when the element's remaining vertex lies behind it.
   for (auto& [name, faces] : mesh.boundaries) {
     for (BoundaryFace& face : faces) {
-      auto it = element_of_face.find(key_of(face.nodes.data(), mesh.dim));
-      if (it == element_of_face.end()) {
+      const int element =
+          face.nodes[0] >= 0 && face.nodes[0] < mesh.n_nodes() ? element_with_face(mesh, at, face.nodes.data()) : -1;
+      if (element < 0) {
         std::string nodes;
         for (int k = 0; k < mesh.dim; ++k) nodes += (k ? ", " : "") + std::to_string(face.nodes[k]);
         throw std::runtime_error("boundary \"" + name + "\" has a " + (mesh.dim == 2 ? "edge" : "face") + " (" + nodes +
                                  ") that is not a side of any element");
       }
-      const int* v = mesh.element(it->second.front().first);
+      const int* v = mesh.element(element);
       int other = v[0];
       for (int k = 0; k < nv; ++k)
         if (std::find(face.nodes.begin(), face.nodes.begin() + mesh.dim, v[k]) == face.nodes.begin() + mesh.dim)
@@ -287,7 +282,7 @@ void orient(Mesh& mesh) {
 
 std::vector<BoundaryFace> outer_boundary(const Mesh& mesh) {
   std::vector<BoundaryFace> out;
-  const FaceMap element_of_face = elements_of_faces(mesh);
+  const VertexElements at = vertex_elements(mesh);
   const auto& faces = element_faces(mesh.type());
   const int per_face = mesh.nodes_per_face();
   int vertices[3];
@@ -295,7 +290,7 @@ std::vector<BoundaryFace> outer_boundary(const Mesh& mesh) {
     const int* v = mesh.element(e);
     for (const auto& local : faces) {
       for (int k = 0; k < mesh.dim; ++k) vertices[k] = v[local[k]];
-      if (element_of_face.at(key_of(vertices, mesh.dim)).size() != 1) continue;
+      if (element_with_face(mesh, at, vertices, e) >= 0) continue;  // an inner face
       BoundaryFace face;
       face.n_nodes = per_face;
       for (int k = 0; k < per_face; ++k) face.nodes[k] = v[local[k]];

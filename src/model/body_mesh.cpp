@@ -100,6 +100,7 @@ Mesh mesh_half_disc_body(const Scene& scene, double max_gap, const BuildOptions&
   HalfDiscMeshRequest request;
   request.radius = body.radius;
   copy_mesh_spec(body, request);
+  request.refinements = body.mesh.refinements;
   // The arc P(φ) = (R sin φ, R − R cos φ); see half_disc_mesher.hpp.
   const double R = body.radius;
   Curve arc{[R](double phi) { return Eigen::Vector3d(R * std::sin(phi), R - R * std::cos(phi), 0.0); },

@@ -6,6 +6,7 @@
 
 #include "../contact/contact.hpp"
 #include "contactqp/errors.hpp"
+#include "contactqp/mesh_file.hpp"
 #include "model_parts.hpp"
 
 namespace contactqp {
@@ -91,6 +92,12 @@ Eigen::MatrixXd dof_frame(const Model& model, int node) {
   if (model.frame_of_node.empty() || model.frame_of_node[node] < 0)
     return Eigen::MatrixXd::Identity(model.dim, model.dim);
   return model.frames[model.frame_of_node[node]];
+}
+
+Mesh scene_mesh(const Scene& scene, const BuildOptions& options) {
+  Model model;
+  choose_max_gap(scene, model);  // the fine zone of a generated shape depends on it
+  return detail::mesh_body(scene, model.max_gap, options);
 }
 
 Model build_model(const Scene& scene, const BuildOptions& options) {

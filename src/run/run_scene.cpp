@@ -9,8 +9,13 @@ namespace contactqp {
 RunReport run_scene(const Scene& scene, const RunOptions& options) {
   Stopwatch total;
   validate_options(scene.solver);  // backend options too, before the mesh is built
+  const auto phase = [&options](const char* name) {
+    if (options.on_phase) options.on_phase(name);
+  };
 
+  phase("mesh");
   auto model = std::make_shared<Model>(build_model(scene, options.build));
+  phase("assemble");
   auto qp = std::make_shared<QuadraticProgram>(assemble_qp(*model));
 
   RunReport report;
@@ -19,13 +24,16 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   report.options = scene.solver;
   report.options.observer = nullptr;  // a callback is not data: the report must not keep the caller's closure alive
   report.no_contact = options.no_contact;
+  phase("solve");
   report.result = options.no_contact ? solve_without_contact(*qp, scene.solver) : solve(*qp, scene.solver);
 
+  phase("certify");
   Stopwatch clock;
   report.certificate = certify(*qp, report.result.u, report.result.lambda, report.result.K_factor.get());
   report.timings.merge(model->timings);
   report.timings.merge(report.result.timings);
   report.timings.add("certify", clock.seconds());
+  phase("postprocess");
   clock.restart();
   report.contact = summarize_contact(*model, *qp, report.result.u, report.result.lambda);
   if (!report.no_contact) {

@@ -41,6 +41,11 @@ MeshSpec read_generated_mesh(JsonObject mesh, Formulation formulation) {
     require(spec.order == 1 || spec.order == 2, mesh.path_of("order"), spec.order, "must be 1 or 2");
     if (formulation == Formulation::Mixed) require_mixed_order(spec.order, mesh.path_of("order"));
   }
+  if (auto refinements = mesh.optional_integer("refinements")) {
+    spec.refinements = *refinements;
+    require(spec.refinements >= 0 && spec.refinements <= 4, mesh.path_of("refinements"), spec.refinements,
+            "must be an integer from 0 to 4");
+  }
   mesh.finish();
   return spec;
 }
@@ -140,6 +145,9 @@ BodySpec read_body(JsonObject body, const std::string& source, int dim) {
     read_mesh_file(body, spec, source);
   } else {
     spec.mesh = read_generated_mesh(body.object("mesh"), spec.formulation);
+    if (spec.mesh.refinements != 0 && spec.shape != "half_disc")
+      throw InputError(body.path_of("mesh.refinements"), "= " + std::to_string(spec.mesh.refinements) +
+                                                             ": only the half_disc shape is refined; remove the key");
     const bool round = spec.shape == "half_disc" || spec.shape == "hemisphere";
     const double extent =
         round ? spec.radius

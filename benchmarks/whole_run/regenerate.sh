@@ -1,0 +1,33 @@
+#!/bin/sh
+# The whole-run benchmark (docs/whole-run.md): `contactqp solve` from process start to exit,
+# per phase, against one linear solve of the same K, on the Hertz half disc from 1e3 to 1.1e6
+# DOFs (benchmarks/scaling's levels; from level 4 on with body.mesh.refinements = 2) and the
+# Hertz sphere (benchmarks/scaling/results-3d's levels). Every run in its own process, one
+# after the other, so the ratios of one run are comparable; the machine's other load is not
+# controlled (see the page).
+#
+#     benchmarks/whole_run/regenerate.sh [BUILD_DIR]
+set -eu
+SOURCE=$(cd "$(dirname "$0")/../.." && pwd)
+BUILD=${1:-build}
+case $BUILD in /*) ;; *) BUILD=$SOURCE/$BUILD ;; esac
+OUT=$SOURCE/benchmarks/whole_run/results
+mkdir -p "$OUT"
+rm -f "$OUT/whole_run.csv"
+LEVELS=$SOURCE/benchmarks/scaling/results/scenes
+SPHERES=$SOURCE/benchmarks/scaling/results-3d/scenes
+RUN="/usr/bin/python3 $SOURCE/benchmarks/whole_run/whole_run.py $BUILD/contactqp $OUT/whole_run.csv"
+$RUN --label 2D "$LEVELS/hertz-level-0.json" "$LEVELS/hertz-level-1.json" "$LEVELS/hertz-level-2.json" \
+  "$LEVELS/hertz-level-3.json"
+$RUN --label 2D --refinements 2 "$LEVELS/hertz-level-4.json" "$LEVELS/hertz-level-5.json" \
+  "$LEVELS/hertz-level-6.json" "$LEVELS/hertz-level-7.json" "$LEVELS/hertz-level-8.json"
+$RUN --label 3D "$SPHERES/sphere-order1-cs0.01.json" "$SPHERES/sphere-order2-cs0.014.json" \
+  "$SPHERES/sphere-order2-cs0.01.json" "$SPHERES/sphere-order1-cs0.0035.json"
+# Before: a contactqp built from the commit before this benchmark (BEFORE=path), on the same
+# levels meshed by Gmsh directly, for the before/after table.
+if [ -n "${BEFORE:-}" ]; then
+  /usr/bin/python3 "$SOURCE/benchmarks/whole_run/whole_run.py" "$BEFORE" "$OUT/whole_run.csv" --label before --before \
+    "$LEVELS/hertz-level-5.json" "$LEVELS/hertz-level-8.json"
+fi
+/usr/bin/python3 "$SOURCE/benchmarks/whole_run/plot.py" "$OUT/whole_run.csv" "$OUT/whole_run.png" "$OUT/whole_run-table.md"
+rm -rf "$OUT/runs"

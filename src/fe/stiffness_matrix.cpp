@@ -1,0 +1,165 @@
+// Why not Eigen's setFromTriplets: it keeps the triplets (16 bytes per element entry), a
+// transposed copy and then K itself, and its sorting was most of the assembly's time. Here K's
+// pattern comes from the mesh (the free DOFs of the nodes sharing an element, which are
+// exactly the entries the elements add to), and the element matrices are added into it in
+// element order, chunk by chunk: one thread per half of K's columns, so every entry is still
+// the sum of its element contributions in element order, as setFromTriplets sums duplicates.
+#include "stiffness_matrix.hpp"
+
+#include <algorithm>
+#include <thread>
+#include <vector>
+
+#include "contactqp/mesh.hpp"
+
+namespace contactqp::detail {
+
+Eigen::MatrixXd dof_frame_rotated(const Model& model, const int* v, int npe, Eigen::MatrixXd Ke);
+
+namespace {
+
+// At most two threads (this machine's cores); one below this many elements per thread.
+constexpr unsigned kMaxThreads = 2;
+constexpr int kElementsPerThread = 4096;
+// Element matrices computed before they are added: bounds the buffer (about 20 MB for 10-node
+// tetrahedra) whatever the mesh.
+constexpr int kChunk = 2048;
+
+int thread_count(int n_elements) {
+  if (n_elements < kElementsPerThread) return 1;
+  return static_cast<int>(std::max(1u, std::min(kMaxThreads, std::thread::hardware_concurrency())));
+}
+
+// Runs work(t) for t = 0 .. n − 1, t = 0 on the calling thread.
+template <class Work>
+void in_parallel(int n, const Work& work) {
+  std::vector<std::thread> threads;
+  for (int t = 1; t < n; ++t) threads.emplace_back(work, t);
+  work(0);
+  for (std::thread& thread : threads) thread.join();
+}
+
+// K's compressed pattern (column starts, row indices ascending), values zero.
+void build_pattern(const Model& model, Eigen::SparseMatrix<double>& K) {
+  const Mesh& mesh = model.mesh;
+  const int npe = mesh.nodes_per_element(), dim = mesh.dim, n_nodes = mesh.n_nodes();
+  // Elements at each node (CSR), then each node's neighbours: the nodes of those elements.
+  std::vector<int> first(n_nodes + 1, 0);
+  for (int node : mesh.elements) ++first[node + 1];
+  for (int n = 0; n < n_nodes; ++n) first[n + 1] += first[n];
+  std::vector<int> element_at(first.back()), next(first.begin(), first.end() - 1);
+  for (int e = 0; e < mesh.n_elements(); ++e)
+    for (int k = 0; k < npe; ++k) element_at[next[mesh.element(e)[k]]++] = e;
+
+  std::vector<int> free_of_node(n_nodes, 0);  // free DOFs per node
+  for (int n = 0; n < n_nodes; ++n)
+    for (int c = 0; c < dim; ++c) free_of_node[n] += model.free_index[dim * n + c] >= 0;
+
+  K.resize(model.n_free, model.n_free);
+  std::vector<int> neighbours;
+  std::vector<std::vector<int>> rows_of_node(n_nodes);
+  std::size_t nnz = 0;
+  for (int n = 0; n < n_nodes; ++n) {
+    if (free_of_node[n] == 0) continue;
+    neighbours.clear();
+    for (int k = first[n]; k < first[n + 1]; ++k) {
+      const int* v = mesh.element(element_at[k]);
+      neighbours.insert(neighbours.end(), v, v + npe);
+    }
+    std::sort(neighbours.begin(), neighbours.end());
+    neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
+    std::vector<int>& rows = rows_of_node[n];
+    // free_index increases with the DOF, so the rows come out ascending.
+    for (int m : neighbours)
+      for (int c = 0; c < dim; ++c)
+        if (model.free_index[dim * m + c] >= 0) rows.push_back(model.free_index[dim * m + c]);
+    nnz += rows.size() * free_of_node[n];
+  }
+  K.resizeNonZeros(static_cast<Eigen::Index>(nnz));
+  int* outer = K.outerIndexPtr();
+  int* inner = K.innerIndexPtr();
+  std::fill(K.valuePtr(), K.valuePtr() + nnz, 0.0);
+  std::size_t position = 0;
+  for (int n = 0; n < n_nodes; ++n)
+    for (int c = 0; c < dim; ++c) {
+      const int column = model.free_index[dim * n + c];
+      if (column < 0) continue;
+      outer[column] = static_cast<int>(position);
+      std::copy(rows_of_node[n].begin(), rows_of_node[n].end(), inner + position);
+      position += rows_of_node[n].size();
+    }
+  outer[model.n_free] = static_cast<int>(position);
+  // Release the per-node lists now, before the values are added.
+  std::vector<std::vector<int>>().swap(rows_of_node);
+}
+
+}  // namespace
+
+void assemble_stiffness(const Model& model, Eigen::SparseMatrix<double>& K, Eigen::VectorXd& f) {
+  const Mesh& mesh = model.mesh;
+  const ElementLaw law = element_law(model.scene);
+  const double thickness = model.scene.body.thickness;
+  const int npe = mesh.nodes_per_element(), dim = mesh.dim, n = dim * npe;
+  const ElementType type = mesh.type();
+  const int n_elements = mesh.n_elements();
+  build_pattern(model, K);
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
+  double* values = K.valuePtr();
+
+  const int n_threads = thread_count(n_elements);
+  std::vector<Eigen::MatrixXd> Ke(std::min(kChunk, n_elements));
+  // Columns [column_from[t], column_from[t + 1]) are thread t's to add to.
+  std::vector<int> column_from(n_threads + 1);
+  for (int t = 0; t <= n_threads; ++t)
+    column_from[t] = static_cast<int>(static_cast<long long>(model.n_free) * t / n_threads);
+  const auto dofs_of = [&](int e, int* dofs) {
+    const int* v = mesh.element(e);
+    for (int i = 0; i < npe; ++i)
+      for (int c = 0; c < dim; ++c) dofs[dim * i + c] = dim * v[i] + c;
+  };
+
+  for (int start = 0; start < n_elements; start += kChunk) {
+    const int end = std::min(n_elements, start + kChunk);
+    in_parallel(n_threads, [&](int t) {  // the element matrices of the chunk
+      std::vector<Eigen::Vector3d> coordinates(npe);
+      for (int e = start + (end - start) * t / n_threads; e < start + (end - start) * (t + 1) / n_threads; ++e) {
+        const int* v = mesh.element(e);
+        for (int i = 0; i < npe; ++i) coordinates[i] = mesh.nodes[v[i]];
+        Ke[e - start] = dof_frame_rotated(model, v, npe, element_stiffness(type, coordinates.data(), law, thickness));
+      }
+    });
+    in_parallel(n_threads, [&](int t) {  // added in element order, each thread to its own columns
+      std::vector<int> dofs(n);
+      for (int e = start; e < end; ++e) {
+        dofs_of(e, dofs.data());
+        const Eigen::MatrixXd& k = Ke[e - start];
+        for (int j = 0; j < n; ++j) {
+          const int column = model.free_index[dofs[j]];
+          if (column < column_from[t] || column >= column_from[t + 1]) continue;
+          const int* rows = inner + outer[column];
+          const int* rows_end = inner + outer[column + 1];
+          for (int i = 0; i < n; ++i) {
+            const int row = model.free_index[dofs[i]];
+            if (row < 0) continue;
+            values[std::lower_bound(rows, rows_end, row) - inner] += k(i, j);
+          }
+        }
+      }
+    });
+    // The prescribed displacements to the right-hand side, in the serial loop's order.
+    std::vector<int> dofs(n);
+    for (int e = start; e < end; ++e) {
+      dofs_of(e, dofs.data());
+      const Eigen::MatrixXd& k = Ke[e - start];
+      for (int i = 0; i < n; ++i) {
+        const int row = model.free_index[dofs[i]];
+        if (row < 0) continue;
+        for (int j = 0; j < n; ++j)
+          if (model.free_index[dofs[j]] < 0) f[row] -= k(i, j) * model.prescribed[dofs[j]];
+      }
+    }
+  }
+}
+
+}  // namespace contactqp::detail

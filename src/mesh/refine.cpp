@@ -1,0 +1,118 @@
+#include "refine.hpp"
+
+#include <cstdint>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace contactqp::detail {
+namespace {
+
+// The mid-side node of each edge, made once: edges are keyed by their two end nodes.
+class EdgeNodes {
+ public:
+  EdgeNodes(Mesh& mesh, std::size_t expected) : mesh_(mesh) { index_.reserve(expected); }
+
+  int operator()(int a, int b) {
+    const std::uint64_t key =
+        a < b ? (std::uint64_t(a) << 32 | std::uint32_t(b)) : (std::uint64_t(b) << 32 | std::uint32_t(a));
+    auto [it, inserted] = index_.emplace(key, mesh_.n_nodes());
+    if (inserted) mesh_.nodes.push_back(0.5 * (mesh_.nodes[a] + mesh_.nodes[b]));
+    return it->second;
+  }
+
+ private:
+  Mesh& mesh_;
+  std::unordered_map<std::uint64_t, int> index_;
+};
+
+// Snaps the new node of each boundary edge onto its boundary.
+void snap_boundary_nodes(Mesh& mesh, const std::vector<std::pair<std::string, int>>& new_nodes,
+                         const SnapToBoundary& snap) {
+  for (const auto& [name, node] : new_nodes) mesh.nodes[node] = snap(name, mesh.nodes[node]);
+}
+
+Mesh split_once(const Mesh& coarse, const SnapToBoundary& snap) {
+  Mesh fine;
+  fine.dim = 2;
+  fine.order = 1;
+  fine.nodes = coarse.nodes;
+  const int n_elements = coarse.n_elements();
+  fine.nodes.reserve(coarse.nodes.size() + 3 * static_cast<std::size_t>(n_elements) / 2 + 64);
+  fine.elements.reserve(12 * static_cast<std::size_t>(n_elements));
+  EdgeNodes mid(fine, 3 * static_cast<std::size_t>(n_elements) / 2 + 64);
+  for (int e = 0; e < n_elements; ++e) {
+    const int* v = coarse.element(e);
+    const int m01 = mid(v[0], v[1]), m12 = mid(v[1], v[2]), m20 = mid(v[2], v[0]);
+    // The corner triangles, then the middle one: each keeps the parent's orientation.
+    for (int node : {v[0], m01, m20, m01, v[1], m12, m20, m12, v[2], m01, m12, m20}) fine.elements.push_back(node);
+  }
+  std::vector<std::pair<std::string, int>> new_nodes;
+  for (const auto& [name, faces] : coarse.boundaries) {
+    auto& split = fine.boundaries[name];
+    split.reserve(2 * faces.size());
+    for (const BoundaryFace& face : faces) {
+      const int m = mid(face.nodes[0], face.nodes[1]);
+      new_nodes.emplace_back(name, m);
+      BoundaryFace first, second;
+      first.n_nodes = second.n_nodes = 2;
+      first.nodes[0] = face.nodes[0];
+      first.nodes[1] = m;
+      second.nodes[0] = m;
+      second.nodes[1] = face.nodes[1];
+      split.push_back(first);
+      split.push_back(second);
+    }
+  }
+  snap_boundary_nodes(fine, new_nodes, snap);
+  for (const auto& [name, elements] : coarse.regions) {
+    auto& children = fine.regions[name];
+    for (int e : elements)
+      for (int k = 0; k < 4; ++k) children.push_back(4 * e + k);
+  }
+  fine.points = coarse.points;
+  return fine;
+}
+
+// 3-node triangles to 6-node ones: vertices, then the mid-sides 01, 12, 20.
+Mesh add_mid_sides(const Mesh& linear, const SnapToBoundary& snap) {
+  Mesh quadratic;
+  quadratic.dim = 2;
+  quadratic.order = 2;
+  quadratic.nodes = linear.nodes;
+  const int n_elements = linear.n_elements();
+  quadratic.elements.reserve(6 * static_cast<std::size_t>(n_elements));
+  EdgeNodes mid(quadratic, 3 * static_cast<std::size_t>(n_elements) / 2 + 64);
+  for (int e = 0; e < n_elements; ++e) {
+    const int* v = linear.element(e);
+    const int m01 = mid(v[0], v[1]), m12 = mid(v[1], v[2]), m20 = mid(v[2], v[0]);
+    for (int node : {v[0], v[1], v[2], m01, m12, m20}) quadratic.elements.push_back(node);
+  }
+  std::vector<std::pair<std::string, int>> new_nodes;
+  for (const auto& [name, faces] : linear.boundaries) {
+    auto& out = quadratic.boundaries[name];
+    out.reserve(faces.size());
+    for (BoundaryFace face : faces) {
+      face.nodes[2] = mid(face.nodes[0], face.nodes[1]);
+      face.n_nodes = 3;
+      new_nodes.emplace_back(name, face.nodes[2]);
+      out.push_back(face);
+    }
+  }
+  snap_boundary_nodes(quadratic, new_nodes, snap);
+  quadratic.regions = linear.regions;
+  quadratic.points = linear.points;
+  return quadratic;
+}
+
+}  // namespace
+
+Mesh refine_triangles(const Mesh& mesh, int times, int order, const SnapToBoundary& snap) {
+  if (mesh.dim != 2 || mesh.order != 1) throw std::runtime_error("refine_triangles: needs a mesh of 3-node triangles");
+  Mesh refined = mesh;
+  for (int k = 0; k < times; ++k) refined = split_once(refined, snap);
+  if (order == 2) refined = add_mid_sides(refined, snap);
+  orient(refined);  // checks every element too: a snapped node must not invert one
+  return refined;
+}
+
+}  // namespace contactqp::detail
