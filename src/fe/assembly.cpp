@@ -55,7 +55,7 @@ void refuse_unrepresentable(const Model& model, const QuadraticProgram& qp) {
 QuadraticProgram assemble_qp(Model& model) {
   Stopwatch clock;
   const Mesh& mesh = model.mesh;
-  const ElementLaw law = element_law(model.scene);
+  const std::vector<ElementLaw> laws = element_laws(model);
   const double thickness = model.scene.body.thickness;
   const int npe = mesh.nodes_per_element();
   const int dim = mesh.dim;
@@ -73,7 +73,7 @@ QuadraticProgram assemble_qp(Model& model) {
       coordinates[i] = mesh.nodes[v[i]];
       for (int c = 0; c < dim; ++c) dofs[dim * i + c] = dim * v[i] + c;
     }
-    Eigen::MatrixXd Ke = element_stiffness(type, coordinates.data(), law, thickness);
+    Eigen::MatrixXd Ke = element_stiffness(type, coordinates.data(), laws[body_of_element(model, e)], thickness);
     rotate_to_dof_frames(model, v, npe, Ke);
     for (int i = 0; i < dim * npe; ++i) {
       const int row = model.free_index[dofs[i]];

@@ -94,6 +94,7 @@ Eigen::MatrixXd dof_frame(const Model& model, int node) {
 }
 
 Model build_model(const Scene& scene, const BuildOptions& options) {
+  if (!scene.bodies.empty()) return detail::build_bodies_model(scene, options);
   Model model;
   choose_max_gap(scene, model);
 
