@@ -137,9 +137,9 @@ double smallest_face_size(const Mesh& mesh, const std::string& boundary) {
   for (const BoundaryFace& face : it->second) {
     const auto& x = mesh.nodes;
     const auto& v = face.nodes;
-    const double size = mesh.dim == 2 ? (x[v[1]] - x[v[0]]).norm()
-                                      : ((x[v[1]] - x[v[0]]).norm() + (x[v[2]] - x[v[1]]).norm() +
-                                         (x[v[0]] - x[v[2]]).norm()) / 3.0;
+    const double size =
+        mesh.dim == 2 ? (x[v[1]] - x[v[0]]).norm()
+                      : ((x[v[1]] - x[v[0]]).norm() + (x[v[2]] - x[v[1]]).norm() + (x[v[0]] - x[v[2]]).norm()) / 3.0;
     smallest = std::min(smallest, size);
   }
   return smallest;
@@ -274,7 +274,8 @@ std::optional<FaceProjection> project_along_common_normal(const Mesh& mesh, cons
     FaceProjection next;
     const BoundaryFace& face = faces[best];
     Eigen::Vector2d xi = best_hit.parameters;
-    if (dim == 2) xi[0] = std::clamp(xi[0], 0.0, 1.0);
+    if (dim == 2)
+      xi[0] = std::clamp(xi[0], 0.0, 1.0);
     else {
       xi = xi.cwiseMax(0.0);
       if (xi.sum() > 1) xi /= xi.sum();
@@ -284,8 +285,8 @@ std::optional<FaceProjection> project_along_common_normal(const Mesh& mesh, cons
     next.point.setZero();
     next.weights.fill(0.0);
     if (dim == 2) {
-      const EdgePoint e =
-          edge_point(xi[0], mesh.nodes[face.nodes[0]], mesh.nodes[face.nodes[1]], order == 2 ? &mesh.nodes[face.nodes[2]] : nullptr);
+      const EdgePoint e = edge_point(xi[0], mesh.nodes[face.nodes[0]], mesh.nodes[face.nodes[1]],
+                                     order == 2 ? &mesh.nodes[face.nodes[2]] : nullptr);
       for (int k = 0; k < face.n_nodes; ++k) next.weights[k] = e.N[k];
       next.normal = Eigen::Vector3d(e.dx.y(), -e.dx.x(), 0.0).normalized();
       next.vertex = xi[0] < 1e-9 ? 0 : (xi[0] > 1 - 1e-9 ? 1 : -1);

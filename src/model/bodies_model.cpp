@@ -44,8 +44,8 @@ double largest_push(const std::vector<LoadSpec>& loads) {
   double largest = 0;
   for (const LoadSpec& load : loads) {
     if (load.is_force()) return -1;
-    largest = std::max(largest, std::hypot(load.value[0].value_or(0.0), load.value[1].value_or(0.0),
-                                           load.value[2].value_or(0.0)));
+    largest = std::max(
+        largest, std::hypot(load.value[0].value_or(0.0), load.value[1].value_or(0.0), load.value[2].value_or(0.0)));
   }
   return largest;
 }
@@ -232,7 +232,8 @@ Model build_bodies_model(const Scene& scene, const BuildOptions& options) {
     local.body = body.body;
     local.loads = body.loads;
     local.contact.boundary = touching.front();
-    for (const ObstacleSpec& obstacle : scene.obstacles) local.obstacles.push_back(to_local(obstacle, body.placement, dim));
+    for (const ObstacleSpec& obstacle : scene.obstacles)
+      local.obstacles.push_back(to_local(obstacle, body.placement, dim));
     for (const ContactPair& pair : scene.pairs)
       for (int k = 0; k < 2; ++k)
         if (pair.body[k] == static_cast<int>(b)) {
@@ -296,9 +297,8 @@ Model build_bodies_model(const Scene& scene, const BuildOptions& options) {
     PairSides sides;
     const double size[2] = {smallest_face_size(model.mesh, side[0]), smallest_face_size(model.mesh, side[1])};
     sides.node_side = size[1] < size[0] * (1 - 1e-6) ? 1 : 0;
-    sides.rule = size[0] == size[1] || std::abs(size[0] - size[1]) <= 1e-6 * size[0]
-                     ? "equal meshes: the first side"
-                     : "the finer mesh";
+    sides.rule = size[0] == size[1] || std::abs(size[0] - size[1]) <= 1e-6 * size[0] ? "equal meshes: the first side"
+                                                                                     : "the finer mesh";
     sides.node_face_size = size[sides.node_side];
     sides.face_face_size = size[1 - sides.node_side];
     model.pair_sides.push_back(sides);
@@ -314,11 +314,11 @@ Model build_bodies_model(const Scene& scene, const BuildOptions& options) {
       // scene (a wrong offset), not a contact to resolve.
       const double tolerance = depth + 1e-9 * sides.face_face_size;
       if (c.gap < -tolerance)
-        throw InputError(pair.path, "= [\"" + side[0] + "\", \"" + side[1] + "\"]: the bodies overlap at the start: node " +
-                                        std::to_string(c.node) + " at " + format_point(model.mesh.nodes[c.node], dim) +
-                                        " lies " + format_value(-c.gap) + " inside \"" +
-                                        scene.bodies[c.other_body].name + "\" (more than max_gap = " +
-                                        format_value(depth) + ")");
+        throw InputError(pair.path, "= [\"" + side[0] + "\", \"" + side[1] +
+                                        "\"]: the bodies overlap at the start: node " + std::to_string(c.node) +
+                                        " at " + format_point(model.mesh.nodes[c.node], dim) + " lies " +
+                                        format_value(-c.gap) + " inside \"" + scene.bodies[c.other_body].name +
+                                        "\" (more than max_gap = " + format_value(depth) + ")");
       model.candidates.push_back(c);
     }
   }

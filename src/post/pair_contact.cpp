@@ -51,8 +51,8 @@ std::optional<HertzComparison> compare_pair_with_hertz(const Model& model, const
   hertz.radius_source = "bodies' radii";
   hertz.effective_modulus = 1.0 / (compliance(a.scene) + compliance(b.scene));
   const double R = hertz.radius, E = hertz.effective_modulus;
-  const double P = dim == 2 ? contact.force_on_node_body.norm() / model.scene.body.thickness
-                            : contact.force_on_node_body.norm();
+  const double P =
+      dim == 2 ? contact.force_on_node_body.norm() / model.scene.body.thickness : contact.force_on_node_body.norm();
   if (!(P > 0)) return std::nullopt;
   hertz.force = P;
   const auto& profile = contact.profile;
@@ -257,7 +257,8 @@ std::vector<PairContact> summarize_pairs(const Model& model, const QuadraticProg
       if (!(lambda[i] > loaded) || faces == model.mesh.boundaries.end()) continue;
       Eigen::Vector3d relative = Eigen::Vector3d::Zero();
       relative.head(dim) = displacement.segment(dim * c.node, dim);
-      for (int j = 0; j < c.n_face_nodes; ++j) relative.head(dim) -= c.weights[j] * displacement.segment(dim * c.face_nodes[j], dim);
+      for (int j = 0; j < c.n_face_nodes; ++j)
+        relative.head(dim) -= c.weights[j] * displacement.segment(dim * c.face_nodes[j], dim);
       const double slip = (relative - relative.dot(c.normal) * c.normal).norm();
       contact.max_slip = std::max(contact.max_slip, slip);
       const detail::ClosestFace now = detail::closest_face(moved, faces->second, dim, moved[c.node]);

@@ -55,10 +55,9 @@ SceneBody read_scene_body(const json& entry, const std::string& path, const std:
   if (body.body.symmetry)
     for (int c = 0; c < dim - 1; ++c)
       if (body.placement.offset[c] != 0.0)
-        throw InputError(own.path_of("offset"), "= " + format_point(body.placement.offset, dim) +
-                                                    ": a body with symmetry keeps its cut on " +
-                                                    (c == 0 ? "x = 0" : "y = 0") + " (offset only along " +
-                                                    (dim == 2 ? "y" : "z") + ")");
+        throw InputError(own.path_of("offset"),
+                         "= " + format_point(body.placement.offset, dim) + ": a body with symmetry keeps its cut on " +
+                             (c == 0 ? "x = 0" : "y = 0") + " (offset only along " + (dim == 2 ? "y" : "z") + ")");
   if (!own.has("load"))
     throw InputError(path + ".load", "is missing: every body needs a load or a support that holds it");
   for (const auto& [item, load_path] : one_or_many(own.value("load"), own.path_of("load")))
@@ -68,8 +67,7 @@ SceneBody read_scene_body(const json& entry, const std::string& path, const std:
 
 // "roller.surface" → (body index, "surface"), or InputError naming the field.
 std::pair<int, std::string> body_boundary(const json& value, const std::string& path, const Scene& scene) {
-  if (!value.is_string())
-    throw InputError(path, "= " + describe(value) + ": must be a string \"body.boundary\"");
+  if (!value.is_string()) throw InputError(path, "= " + describe(value) + ": must be a string \"body.boundary\"");
   const std::string text = value.get<std::string>();
   const auto dot = text.find('.');
   if (dot == std::string::npos || dot == 0 || dot + 1 == text.size())
@@ -84,7 +82,12 @@ std::pair<int, std::string> body_boundary(const json& value, const std::string& 
                                (hint.empty() ? "" : "; did you mean \"" + hint + "." + boundary + "\"?"));
   }
   const int index = static_cast<int>(it - names.begin());
-  require_boundary(boundary, scene.bodies[index].body, path);
+  try {
+    require_boundary(boundary, scene.bodies[index].body, path);
+  } catch (const InputError& error) {  // name the whole "body.boundary" as written
+    const std::string what = error.what(), tail = what.substr(what.find(": ") + 2);
+    throw InputError(path, "= \"" + text + "\": " + tail);
+  }
   return {index, boundary};
 }
 
@@ -108,8 +111,8 @@ void read_contact_entry(JsonObject entry, Scene& scene) {
       pair.boundary[k] = boundary;
     }
     if (pair.body[0] == pair.body[1])
-      throw InputError(entry.path_of("pair"), "= " + describe(sides) +
-                                                  ": both sides are body \"" + scene.bodies[pair.body[0]].name +
+      throw InputError(entry.path_of("pair"), "= " + describe(sides) + ": both sides are body \"" +
+                                                  scene.bodies[pair.body[0]].name +
                                                   "\"; a pair couples two different bodies");
     pair.max_gap = read_max_gap(entry);
     entry.finish();
@@ -146,8 +149,8 @@ void read_bodies(JsonObject& root, Scene& scene, const std::string& source) {
     if (body.body.symmetry != first.body.symmetry)
       throw InputError(body.path + ".symmetry", "= " + std::string(body.body.symmetry ? "true" : "false") +
                                                     ": every body of a scene is modelled with the same symmetry (" +
-                                                    first.path + " has " +
-                                                    (first.body.symmetry ? "true" : "false") + ")");
+                                                    first.path + " has " + (first.body.symmetry ? "true" : "false") +
+                                                    ")");
     if (body.body.thickness != first.body.thickness)
       throw InputError(body.path + ".thickness", "= " + format_value(body.body.thickness) +
                                                      ": every body of a scene has the same thickness (" +
@@ -157,16 +160,19 @@ void read_bodies(JsonObject& root, Scene& scene, const std::string& source) {
     for (const auto& [item, path] : one_or_many(root.value("obstacle"), "obstacle"))
       scene.obstacles.push_back(read_obstacle(JsonObject(*item, path), dim));
   if (!root.has("contact"))
-    throw InputError("contact", "is missing: name the pairs that may touch, [{\"pair\": [\"a.boundary\", "
-                                "\"b.boundary\"]}]");
+    throw InputError("contact",
+                     "is missing: name the pairs that may touch, [{\"pair\": [\"a.boundary\", "
+                     "\"b.boundary\"]}]");
   for (const auto& [item, path] : one_or_many(root.value("contact"), "contact")) {
     if (!item->is_object()) throw InputError(path, "= " + describe(*item) + ": must be an object");
     read_contact_entry(JsonObject(*item, path), scene);
   }
   if (!scene.obstacles.empty() && scene.obstacle_contacts.empty())
-    throw InputError("contact", "names no boundary that may touch the obstacles; add {\"boundary\": \"body.boundary\"}");
+    throw InputError("contact",
+                     "names no boundary that may touch the obstacles; add {\"boundary\": \"body.boundary\"}");
   if (scene.obstacles.empty() && !scene.obstacle_contacts.empty())
-    throw InputError(scene.obstacle_contacts.front().path, "names a boundary for the obstacles, but the scene has none");
+    throw InputError(scene.obstacle_contacts.front().path,
+                     "names a boundary for the obstacles, but the scene has none");
   if (root.has("transform"))
     throw InputError("transform", "is not supported with \"bodies\": place each body by its \"offset\" and \"mirror\"");
   if (root.has("solver")) read_solver(root.object("solver"), scene.solver);

@@ -143,8 +143,7 @@ TEST_CASE("two spheres in 3D: a and p0 within 3% of Hertz, action = reaction", "
   check_action_reaction(report);
 }
 
-TEST_CASE("compare on the shipped two-body scenes: every backend converged and agreeing",
-          "[cross_backend][bodies]") {
+TEST_CASE("compare on the shipped two-body scenes: every backend converged and agreeing", "[cross_backend][bodies]") {
   for (const char* scene : {"scenes/two-cylinders.json", "scenes/roller-on-block.json"}) {
     Scene parsed = load_scene(source_path(scene));
     parsed.solver.tol = 1e-10;
@@ -162,9 +161,11 @@ TEST_CASE("bad two-body input: exit 2, one line naming the field, nothing writte
     std::string from, to, names;
   };
   const std::vector<Bad> cases = {
-      {"\"roller.arc\"", "\"rolle.arc\"", "contact.pair[0]"},                  // unknown body
-      {"\"base.arc\"", "\"base.surface\"", "contact.pair[1]"},                 // unknown boundary
-      {"\"value\": [null, 0.0]", "\"value\": [null, null]", "bodies[1]"},      // held by nothing
+      {"\"roller.arc\"", "\"rolle.arc\"", "contact.pair[0]"},   // unknown body
+      {"\"base.arc\"", "\"base.surface\"", "contact.pair[1]"},  // unknown boundary
+      // held by nothing: a force on the base and no support; the message names its free motion
+      {"\"displacement\", \"boundary\": \"top\", \"value\": [null, 0.0]",
+       "\"traction\", \"boundary\": \"top\", \"value\": [0.0, 0.001]", "translation in y"},
       {"\"mirror\": true", "\"mirror\": true, \"offset\": [0.0, 0.05]", "contact"},  // overlapping
   };
   for (const Bad& bad : cases) {
