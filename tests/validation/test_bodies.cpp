@@ -155,6 +155,18 @@ TEST_CASE("compare on the shipped two-body scenes: every backend converged and a
   }
 }
 
+// Uzawa alone takes about 260 s on its 5.1e4 DOFs (10-node tetrahedra): in the slow entry.
+TEST_CASE("compare on the shipped 3D two-body scene: every backend converged and agreeing",
+          "[.slow][cross_backend][bodies]") {
+  Scene parsed = load_scene(source_path("scenes/two-spheres.json"));
+  parsed.solver.tol = 1e-10;
+  const CompareReport report = compare_scene(parsed);
+  CAPTURE(report.max_diff_u, report.max_diff_lambda, report.max_gap);
+  CHECK(report.runs.size() == available_backends().size());
+  CHECK(report.all_converged);
+  CHECK(report.agree);
+}
+
 TEST_CASE("bad two-body input: exit 2, one line naming the field, nothing written", "[input][cli][bodies]") {
   const std::string good = read_text(source_path("scenes/two-cylinders.json"));
   struct Bad {
