@@ -34,6 +34,7 @@ struct RunReport {
   std::optional<HertzComparison> hertz;
   std::optional<PunchComparison> boussinesq;  // 3D scenes pressed by a flat punch
   std::vector<Reaction> reactions;            // one per displacement load
+  std::vector<PairContact> pairs;             // one per contact pair of a scene with bodies
   Timings timings;                            // every phase: mesh, assemble, factorize, solve, ..., total
   bool no_contact = false;                    // a linear solve with the contact rows dropped (--no-contact)
   std::vector<std::string> warnings;          // also printed on stderr

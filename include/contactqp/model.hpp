@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,32 @@ struct Candidate {
   // edges), in 3D an area (a third of each linear face; for a 6-node face 0 at its vertices
   // and a third of the face at each mid-side node: docs/scenes.md, "Tributary areas").
   double tributary = 0;
+  // Between two bodies (docs/bodies.md): the row −nᵀ(u_i − Σ_j N_j(ξ) u_j) ≤ g of the node
+  // against the closest point ξ on the other body's boundary face. obstacle is then −1.
+  int pair = -1;        // index into scene.pairs, or −1 for an obstacle's row
+  int body = 0;         // the body the node belongs to
+  int other_body = -1;  // the body of the face (pairs)
+  int face = -1;        // the face's index in its boundary (pairs)
+  int n_face_nodes = 0;
+  std::array<int, 6> face_nodes{{-1, -1, -1, -1, -1, -1}};
+  std::array<double, 6> weights{{0, 0, 0, 0, 0, 0}};  // N_j(ξ), summing to 1
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();   // the face's outward unit normal at ξ (global axes)
+};
+
+// One body of a scene with several, within the model's one mesh: its nodes and elements are
+// consecutive, so its DOFs are a block of K's and K is block-diagonal over the bodies.
+struct ModelBody {
+  std::string name;
+  Scene scene;  // the body as a one-body scene: its material, shape, own loads, the obstacles
+  BodyPlacement placement;
+  int first_node = 0, n_nodes = 0, first_element = 0, n_elements = 0;
+};
+
+// Which side of a contact pair carries the nodes (the other the faces), and why.
+struct PairSides {
+  int node_side = 0;                              // 0 or 1: the index into ContactPair::body
+  std::string rule;                               // e.g. "finer mesh"
+  double node_face_size = 0, face_face_size = 0;  // the smallest face of each side's boundary (length)
 };
 
 struct Model {
@@ -52,7 +79,17 @@ struct Model {
   std::string max_gap_rule;           // how max_gap was chosen, for the report
   std::vector<std::string> warnings;  // e.g. near-incompressible linear triangles
   Timings timings;                    // "mesh", "model"
+  // Several bodies (scene.bodies): each one's place in the mesh, the body of each element, the
+  // pairs' sides. Empty for a one-body scene. Boundaries of the mesh are then "body.boundary".
+  std::vector<ModelBody> bodies;
+  std::vector<int> element_body;
+  std::vector<PairSides> pair_sides;
+
+  int body_of_node(int node) const;  // 0 for a one-body model
 };
+
+// The body element e belongs to (0 for a one-body model); element_laws() below has each body's law.
+inline int body_of_element(const Model& model, int e) { return model.element_body.empty() ? 0 : model.element_body[e]; }
 
 // Builds mesh, boundary conditions and candidates. Throws InputError on a scene that cannot
 // be modelled (element limit, a boundary condition that penetrates an obstacle, ...).
@@ -95,6 +132,8 @@ struct ElementLaw {
 };
 ElementLaw element_law(ElasticModel model, const Material& material, Formulation formulation);
 ElementLaw element_law(const Scene& scene);  // the scene's model, material and body.formulation
+// One law per body (model.bodies order; one entry for a one-body model): index it by body_of_element().
+std::vector<ElementLaw> element_laws(const Model& model);
 
 // Stiffness of one element of any type (dim·nodes_per_element square, DOFs [u0x, u0y, (u0z,)
 // u1x, ...]); per `thickness` in 2D, ignored in 3D. `nodes` holds nodes_per_element positions

@@ -98,6 +98,47 @@ struct HertzComparison {
   double error_l2 = 0;              // ‖p_h − p_Hertz‖_L2 / ‖p_Hertz‖_L2 over the contact zone
 };
 
+// The contact forces on the nodes (dim·n_nodes, global axes, for the thickness in 2D): an
+// obstacle's row pushes its node with λ n; a row between two bodies pushes its node with λ n
+// and the other body's face nodes with −λ N_j(ξ) n (action and reaction).
+Eigen::VectorXd contact_nodal_forces(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& lambda);
+
+// The contact of one pair of bodies (docs/bodies.md). Forces are for the whole bodies (doubled
+// by a 2D symmetry plane, four times a 3D quarter model's), for the thickness in 2D.
+struct PairContact {
+  int pair = -1;
+  std::string node_side, face_side;  // "roller.arc": the side whose nodes carry the rows, and the other
+  int node_body = -1, face_body = -1;
+  std::string side_rule;                                         // why the nodes are on that side
+  Eigen::Vector3d force_on_node_body = Eigen::Vector3d::Zero();  // the face side's push on the node side
+  Eigen::Vector3d force_on_face_body = Eigen::Vector3d::Zero();  // and the reaction
+  double action_reaction = 0;  // |F_node + F_face| / max(|F_node|, |F_face|): 0 up to round-off
+  double total_force = 0;      // Σ λ_i
+  double line_load = 0;        // 2D: |F_node| / thickness; 3D: |F_node|
+  // The zone as the node side sees it, measured as for an obstacle (ObstacleContact): s along
+  // the tangent of the mean contact normal (2D) or r from the centre of pressure across it (3D).
+  double half_width = 0, half_width_last_node = 0, centre = 0;
+  double contact_radius = 0, contact_radius_last_node = 0, contact_area = 0;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();  // the mean contact normal, into the node side
+  // Node side. 3D: max λ_i / w_i. 2D: the max of the three-node patch averages
+  // (λ_{i−1} + λ_i + λ_{i+1}) / (w_{i−1} + w_i + w_{i+1}) along the profile: with meshes that do
+  // not match, node-to-segment pressures alternate node by node by a few per cent (the rows do
+  // not pass the patch test), which the patch average removes (docs/bodies.md).
+  double max_pressure = 0;
+  double max_nodal_pressure = 0;  // node side: max λ_i / w_i, unsmoothed
+  double face_max_pressure = 0;   // face side: max of its nodes' share Σ_i λ_i N_j(ξ_i) over their tributary
+  int contact_nodes = 0;
+  std::vector<ContactProfilePoint> profile;       // node side, sorted by s (obstacle −1)
+  std::vector<ContactProfilePoint> face_profile;  // face side's nodes, sorted by s
+  // Small slip: loaded nodes whose deformed closest point lies on a face that shares no node
+  // with the face their row was linearised on, and the largest tangential slip of a loaded node.
+  int slipped_nodes = 0;
+  double max_slip = 0;
+  std::optional<HertzComparison> hertz;  // two cylinders (2D) or spheres (3D) when both sides are round or flat
+};
+std::vector<PairContact> summarize_pairs(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
+                                         const Eigen::VectorXd& lambda);
+
 // Hertz's solution for the contact on one obstacle, when its two surfaces are curved
 // cylinders or a cylinder and a plane with positive relative curvature: a half disc's arc on a
 // plane or circle, a flat rectangle side on a circle, a mesh body whose contact nodes lie on

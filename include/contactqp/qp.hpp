@@ -26,7 +26,8 @@ using Eigen::VectorXd;
 // Where a constraint row came from: metadata for post-processing; backends ignore it.
 struct ConstraintRow {
   int node = -1;      // mesh node whose normal displacement the row bounds
-  int obstacle = -1;  // index of the obstacle in the scene
+  int obstacle = -1;  // index of the obstacle in the scene, or −1 for a row between two bodies
+  int pair = -1;      // index of the contact pair in the scene (rows between bodies), or −1
 };
 
 struct QuadraticProgram {

@@ -158,6 +158,43 @@ struct TransformSpec {
   bool is_identity() const { return rotate_degrees == 0; }
 };
 
+// Scenes with several elastic bodies ("bodies": [...], docs/bodies.md). Each body is meshed in
+// its own frame, as a one-body scene would mesh it, then placed: mirrored (y → −y in 2D,
+// z → −z in 3D, so that a half disc or a hemisphere faces upwards) and then shifted by `offset`.
+// Loads, points and the obstacles are written in the scene's (global) frame.
+struct BodyPlacement {
+  bool mirror = false;
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // dim components, z = 0 in 2D
+  Eigen::Vector3d to_global(const Eigen::Vector3d& local, int dim) const;
+  Eigen::Vector3d to_local(const Eigen::Vector3d& global, int dim) const;
+  Eigen::Vector3d direction_to_local(const Eigen::Vector3d& direction, int dim) const;  // mirror only
+};
+
+struct SceneBody {
+  std::string name;  // unique; pairs name its boundaries "name.boundary"
+  std::string path;  // "bodies[1]", for messages
+  Material material;
+  BodySpec body;
+  std::vector<LoadSpec> loads;  // its own; boundaries are the body's own names
+  BodyPlacement placement;
+};
+
+// A pair of boundaries of two bodies that may touch: {"pair": ["roller.surface", "block.top"]}.
+struct ContactPair {
+  std::string path;  // "contact[0]"
+  int body[2] = {-1, -1};
+  std::string boundary[2];
+  std::optional<double> max_gap;  // the pair's candidate distance; default follows from the loads
+};
+
+// A boundary of one body that may touch the rigid obstacles: {"boundary": "block.bottom"}.
+struct ObstacleContactSpec {
+  std::string path;
+  int body = -1;
+  std::string boundary;
+  std::optional<double> max_gap;
+};
+
 struct Scene {
   std::string source;  // file the scene was read from ("" for a string)
   PlaneModel model = PlaneModel::PlaneStrain;
@@ -168,6 +205,12 @@ struct Scene {
   ContactSpec contact;
   TransformSpec transform;
   SolveOptions solver;  // from the "solver" section; the command line overrides it
+  // A scene with a "bodies" list: every body, the pairs that may touch and the boundaries that
+  // may touch the obstacles. Empty for a one-body scene ("body"), which the fields above hold;
+  // with bodies, material, body and loads above are bodies[0]'s (for what reads one body's).
+  std::vector<SceneBody> bodies;
+  std::vector<ContactPair> pairs;
+  std::vector<ObstacleContactSpec> obstacle_contacts;
 
   int dim() const { return dimension(model); }
 };

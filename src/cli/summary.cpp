@@ -76,17 +76,39 @@ std::string summary_table(const RunReport& report) {
     out += format("               J = %.10g, theta = %.10g, gap = %.2e (relative %.2e)\n", c.objective,
                   c.dual_objective, c.duality_gap, c.relative_gap);
   const ContactSummary& contact = report.contact;
-  if (solid)
-    out += format(
-        "  contact      force P = %.6g, radius a = %.6g (last node %.6g), area %.6g, max pressure p0 = %.6g, %d "
-        "nodes\n",
-        contact.total_force, contact.contact_radius, contact.contact_radius_last_node, contact.contact_area,
-        contact.max_pressure, contact.contact_nodes);
-  else
-    out += format(
-        "  contact      force P = %.6g, half-width b = %.6g (last node %.6g), max pressure p0 = %.6g, %d nodes\n",
-        contact.total_force, contact.half_width, contact.half_width_last_node, contact.max_pressure,
-        contact.contact_nodes);
+  for (const ModelBody& body : model.bodies)
+    out += format("  body         %s: %s, E = %g, nu = %g, %d nodes\n", body.name.c_str(),
+                  body.scene.body.shape.c_str(), body.scene.material.E, body.scene.material.nu, body.n_nodes);
+  for (const PairContact& pair : report.pairs) {
+    out += format("  pair         %s (nodes, %s) on %s: force on %s (%.6g, %.6g%s), action-reaction residual %.2e\n",
+                  pair.node_side.c_str(), pair.side_rule.c_str(), pair.face_side.c_str(),
+                  model.bodies[pair.node_body].name.c_str(), pair.force_on_node_body.x(), pair.force_on_node_body.y(),
+                  solid ? format(", %.6g", pair.force_on_node_body.z()).c_str() : "", pair.action_reaction);
+    if (solid)
+      out += format(
+          "               radius a = %.6g (last node %.6g), area %.6g, max pressure %.6g (other side %.6g), %d nodes\n",
+          pair.contact_radius, pair.contact_radius_last_node, pair.contact_area, pair.max_pressure,
+          pair.face_max_pressure, pair.contact_nodes);
+    else
+      out += format(
+          "               half-width b = %.6g (last node %.6g), max pressure %.6g (other side %.6g), %d nodes\n",
+          pair.half_width, pair.half_width_last_node, pair.max_pressure, pair.face_max_pressure, pair.contact_nodes);
+    if (pair.hertz) out += hertz_line("  hertz     ", *pair.hertz);
+  }
+  // The obstacles' line: always for one body; with bodies only when there are obstacles.
+  if (model.bodies.empty() || !contact.obstacles.empty()) {
+    if (solid)
+      out += format(
+          "  contact      force P = %.6g, radius a = %.6g (last node %.6g), area %.6g, max pressure p0 = %.6g, %d "
+          "nodes\n",
+          contact.total_force, contact.contact_radius, contact.contact_radius_last_node, contact.contact_area,
+          contact.max_pressure, contact.contact_nodes);
+    else
+      out += format(
+          "  contact      force P = %.6g, half-width b = %.6g (last node %.6g), max pressure p0 = %.6g, %d nodes\n",
+          contact.total_force, contact.half_width, contact.half_width_last_node, contact.max_pressure,
+          contact.contact_nodes);
+  }
   if (report.hertz) out += hertz_line("hertz       ", *report.hertz);
   if (report.boussinesq) {
     const PunchComparison& b = *report.boussinesq;

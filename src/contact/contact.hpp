@@ -2,6 +2,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -48,6 +50,52 @@ BoundaryNodeGeometry boundary_geometry(const Mesh& mesh, const std::string& boun
 // the node points against the obstacle normal at the closest point.
 std::vector<Candidate> select_candidates(const Mesh& mesh, const std::vector<ObstacleSpec>& obstacles,
                                          const std::string& boundary, double max_gap);
+
+// pair_rows.cpp: the point of a boundary face closest to p (initial or deformed positions x):
+// its shape weights N_j (face node order), the face's outward unit normal there, the face's
+// parameters (2D: t ∈ [0, 1] from a to b; 3D: (ξ, η) with weights 1 − ξ − η, ξ, η at the
+// vertices) and the vertex it is (within 1e-9 of the parameters), or −1.
+struct FaceProjection {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::Zero();
+  std::array<double, 6> weights{{0, 0, 0, 0, 0, 0}};
+  Eigen::Vector2d parameters = Eigen::Vector2d::Zero();
+  int n_nodes = 0;
+  int vertex = -1;
+  int face = -1;  // project_along_common_normal: the face, in its boundary
+};
+FaceProjection project_to_face(const std::vector<Eigen::Vector3d>& x, const BoundaryFace& face, int dim,
+                               const Eigen::Vector3d& p);
+
+// The face of `faces` closest to p, with its projection (face −1 when there are none).
+struct ClosestFace {
+  int face = -1;
+  double distance = 0;
+  FaceProjection projection;
+};
+ClosestFace closest_face(const std::vector<Eigen::Vector3d>& x, const std::vector<BoundaryFace>& faces, int dim,
+                         const Eigen::Vector3d& p);
+
+// The partner of node p (outward unit normal node_normal) on the other side's faces: where
+// the line through p along the common normal d = (n_other − n_node)/|…| meets them, n_other
+// interpolated from the other side's vertex normals at the meeting point, d and the point
+// iterated to agreement from the closest point. For two surfaces that mirror each other
+// (identical bodies) this is the mirror-image point, which the closest point is not: the
+// pairing, and with it the pressure, is then the same seen from either side. nullopt when the
+// line meets no face near the closest point.
+std::optional<FaceProjection> project_along_common_normal(const Mesh& mesh, const std::vector<BoundaryFace>& faces,
+                                                          const std::map<int, Eigen::Vector3d>& vertex_normal,
+                                                          const Eigen::Vector3d& p, const Eigen::Vector3d& node_normal,
+                                                          const ClosestFace& closest);
+
+// The smallest face of a boundary: its length in 2D, its mean edge length in 3D.
+double smallest_face_size(const Mesh& mesh, const std::string& boundary);
+
+// The nodes of `node_boundary` against the faces of `face_boundary` (of another body, in the
+// same mesh): one candidate per node whose closest point faces it within max_gap. A closest
+// point at a vertex uses the face boundary's averaged normal there. Sets node, gap, tributary,
+// face, face_nodes, weights and normal; the caller sets pair and the bodies.
+std::vector<Candidate> select_pair_candidates(const Mesh& mesh, const std::string& node_boundary,
+                                              const std::string& face_boundary, double max_gap);
 
 // Drops candidates with no free DOF along the obstacle normal (their position is prescribed):
 // they add no unknown. InputError when such a prescribed position penetrates the obstacle.

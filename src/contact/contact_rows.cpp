@@ -121,7 +121,32 @@ struct ContactRowEntries {
   double g = 0;
 };
 
+// A row between two bodies: −nᵀ u_i + Σ_j N_j nᵀ u_j ≤ g (no DOF frames: a scene with bodies
+// has no transform).
+ContactRowEntries pair_row_of(const Model& model, const Candidate& candidate) {
+  ContactRowEntries row;
+  row.g = candidate.gap;
+  const int dim = model.dim;
+  auto add = [&](int node, double scale) {
+    for (int c = 0; c < dim; ++c) {
+      const int dof = dim * node + c;
+      const double value = scale * candidate.normal[c];
+      if (value == 0.0) continue;
+      const int column = model.free_index[dof];
+      if (column < 0)
+        row.g -= value * model.prescribed[dof];
+      else
+        row.coefficients.emplace_back(column, value);
+    }
+  };
+  add(candidate.node, -1.0);
+  for (int j = 0; j < candidate.n_face_nodes; ++j)
+    if (candidate.weights[j] != 0.0) add(candidate.face_nodes[j], candidate.weights[j]);
+  return row;
+}
+
 ContactRowEntries row_of(const Model& model, const Candidate& candidate) {
+  if (candidate.pair >= 0) return pair_row_of(model, candidate);
   const ObstacleProjection projection =
       project(model.scene.obstacles[candidate.obstacle], model.mesh.nodes[candidate.node]);
   ContactRowEntries row;
@@ -156,6 +181,12 @@ void remove_prescribed_candidates(Model& model) {
       continue;
     }
     // Nothing to solve for at this node; its prescribed position must not be inside the obstacle.
+    if (row.g < -1e-12 * std::max(1e-300, std::abs(candidate.gap) + model.prescribed.cwiseAbs().maxCoeff()) &&
+        candidate.pair >= 0)
+      throw InputError(model.scene.pairs[candidate.pair].path,
+                       "prescribes node " + std::to_string(candidate.node) + " at " +
+                           detail::format_point(model.mesh.nodes[candidate.node], model.dim) + " " +
+                           detail::format_value(-row.g) + " deep into the other body");
     if (row.g < -1e-12 * std::max(1e-300, std::abs(candidate.gap) + model.prescribed.cwiseAbs().maxCoeff()))
       throw InputError("load", "prescribes node " + std::to_string(candidate.node) + " at " +
                                    detail::format_point(model.mesh.nodes[candidate.node], model.dim) + " " +
@@ -175,7 +206,7 @@ void add_contact_rows(const Model& model, QuadraticProgram& qp) {
     const ContactRowEntries row = row_of(model, candidate);
     for (const auto& [column, value] : row.coefficients) entries.emplace_back(i, column, value);
     qp.g[i] = row.g;
-    qp.rows[i] = {candidate.node, candidate.obstacle};
+    qp.rows[i] = {candidate.node, candidate.obstacle, candidate.pair};
   }
   qp.B.resize(m, qp.n_dofs());
   qp.B.setFromTriplets(entries.begin(), entries.end());

@@ -198,6 +198,19 @@ ElementLaw element_law(ElasticModel model, const Material& material, Formulation
 
 ElementLaw element_law(const Scene& scene) { return element_law(scene.model, scene.material, scene.body.formulation); }
 
+std::vector<ElementLaw> element_laws(const Model& model) {
+  if (model.bodies.empty()) return {element_law(model.scene)};
+  std::vector<ElementLaw> laws;
+  for (const ModelBody& body : model.bodies) laws.push_back(element_law(body.scene));
+  return laws;
+}
+
+int Model::body_of_node(int node) const {
+  for (size_t b = 0; b < bodies.size(); ++b)
+    if (node < bodies[b].first_node + bodies[b].n_nodes) return static_cast<int>(b);
+  return 0;
+}
+
 Eigen::MatrixXd element_stiffness(ElementType type, const Eigen::Vector3d* nodes, const ElementLaw& law,
                                   double thickness) {
   switch (type) {

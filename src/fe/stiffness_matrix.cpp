@@ -97,7 +97,7 @@ void build_pattern(const Model& model, Eigen::SparseMatrix<double>& K) {
 
 void assemble_stiffness(const Model& model, Eigen::SparseMatrix<double>& K, Eigen::VectorXd& f) {
   const Mesh& mesh = model.mesh;
-  const ElementLaw law = element_law(model.scene);
+  const std::vector<ElementLaw> laws = element_laws(model);  // one per body
   const double thickness = model.scene.body.thickness;
   const int npe = mesh.nodes_per_element(), dim = mesh.dim, n = dim * npe;
   const ElementType type = mesh.type();
@@ -126,7 +126,8 @@ void assemble_stiffness(const Model& model, Eigen::SparseMatrix<double>& K, Eige
       for (int e = start + (end - start) * t / n_threads; e < start + (end - start) * (t + 1) / n_threads; ++e) {
         const int* v = mesh.element(e);
         for (int i = 0; i < npe; ++i) coordinates[i] = mesh.nodes[v[i]];
-        Ke[e - start] = dof_frame_rotated(model, v, npe, element_stiffness(type, coordinates.data(), law, thickness));
+        Ke[e - start] = dof_frame_rotated(
+            model, v, npe, element_stiffness(type, coordinates.data(), laws[body_of_element(model, e)], thickness));
       }
     });
     in_parallel(n_threads, [&](int t) {  // added in element order, each thread to its own columns

@@ -168,6 +168,55 @@ std::string result_json(const RunReport& report) {
   }
   if (report.hertz) out["hertz"] = hertz_json(*report.hertz);
   if (report.boussinesq) out["boussinesq"] = boussinesq_json(*report.boussinesq);
+  if (!model.bodies.empty()) {  // a scene with several bodies: each body and each pair
+    json bodies = json::array();
+    for (size_t b = 0; b < model.bodies.size(); ++b) {
+      const ModelBody& body = model.bodies[b];
+      Eigen::Vector3d force = Eigen::Vector3d::Zero();  // the contact force on the body, every pair
+      for (const PairContact& pair : report.pairs) {
+        if (pair.node_body == static_cast<int>(b)) force += pair.force_on_node_body;
+        if (pair.face_body == static_cast<int>(b)) force += pair.force_on_face_body;
+      }
+      bodies.push_back({{"name", body.name},
+                        {"shape", body.scene.body.shape},
+                        {"E", number(body.scene.material.E)},
+                        {"nu", number(body.scene.material.nu)},
+                        {"nodes", body.n_nodes},
+                        {"elements", body.n_elements},
+                        {"contact_force", vector_json(force, dim)}});
+    }
+    out["bodies"] = bodies;
+    json pairs = json::array();
+    for (const PairContact& pair : report.pairs) {
+      json entry = {{"node_side", pair.node_side},
+                    {"face_side", pair.face_side},
+                    {"side_rule", pair.side_rule},
+                    {"force_on_node_body", vector_json(pair.force_on_node_body, dim)},
+                    {"force_on_face_body", vector_json(pair.force_on_face_body, dim)},
+                    {"action_reaction_residual", number(pair.action_reaction)},
+                    {"total_force", number(pair.total_force)},
+                    {"max_pressure", number(pair.max_pressure)},
+                    {"max_nodal_pressure", number(pair.max_nodal_pressure)},
+                    {"face_max_pressure", number(pair.face_max_pressure)},
+                    {"contact_nodes", pair.contact_nodes},
+                    {"slipped_nodes", pair.slipped_nodes},
+                    {"max_slip", number(pair.max_slip)},
+                    {"profile", profile_json(pair.profile)},
+                    {"face_profile", profile_json(pair.face_profile)}};
+      if (dim == 2) {
+        entry["line_load"] = number(pair.line_load);
+        entry["half_width"] = number(pair.half_width);
+        entry["half_width_last_node"] = number(pair.half_width_last_node);
+      } else {
+        entry["contact_area"] = number(pair.contact_area);
+        entry["contact_radius"] = number(pair.contact_radius);
+        entry["contact_radius_last_node"] = number(pair.contact_radius_last_node);
+      }
+      if (pair.hertz) entry["hertz"] = hertz_json(*pair.hertz);
+      pairs.push_back(entry);
+    }
+    out["pairs"] = pairs;
+  }
   json supports = json::array();
   for (const Reaction& r : report.reactions)
     supports.push_back({{"load", r.load}, {"boundary", r.boundary}, {"force", vector_json(r.force, dim)}});

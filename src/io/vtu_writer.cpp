@@ -98,10 +98,15 @@ ContactFields contact_fields(const RunReport& report, const Eigen::VectorXd& dis
   for (int i = 0; i < qp.n_constraints(); ++i) {
     const Candidate& c = model.candidates[i];
     fields.pressure[c.node] += pressure[i];
-    const Eigen::Vector3d normal = detail::project(model.scene.obstacles[c.obstacle], model.mesh.nodes[c.node]).normal;
-    fields.force.segment(dim * c.node, dim) += lambda[i] * normal.head(dim);
     gap[c.node] = std::min(gap[c.node], slack[i]);
     candidate[c.node] = true;
+  }
+  fields.force = contact_nodal_forces(model, qp, lambda);
+  // Between bodies the face side's nodes have the pressure of their share of the rows' forces.
+  for (const PairContact& pair : report.pairs) {
+    for (const ContactProfilePoint& point : pair.face_profile) fields.pressure[point.node] += point.pressure;
+    for (int node : boundary_nodes(model.mesh, pair.node_side)) fields.mask[node] = 1;
+    for (int node : boundary_nodes(model.mesh, pair.face_side)) fields.mask[node] = 1;
   }
   for (int node : boundary_nodes(model.mesh, model.scene.contact.boundary)) {
     fields.mask[node] = 1;
@@ -132,6 +137,14 @@ std::string vtu_document(const RunReport& report) {
   for (int e = 0; e < mesh.n_elements(); ++e) offsets[e] = static_cast<std::int64_t>(npe) * (e + 1);
   const std::vector<std::uint8_t> types(mesh.n_elements(), vtk_cell_type(mesh.type()));
   const int dim = mesh.dim;
+  // With several bodies, which body each node belongs to (0, 1, ... in the scene's order).
+  std::string body_array;
+  if (!model.bodies.empty()) {
+    Eigen::VectorXd body = Eigen::VectorXd::Zero(mesh.n_nodes());
+    for (size_t b = 0; b < model.bodies.size(); ++b)
+      body.segment(model.bodies[b].first_node, model.bodies[b].n_nodes).setConstant(static_cast<double>(b));
+    body_array = scalars("body", body);
+  }
   const std::string shear_3d =
       dim == 3 ? scalars("sigma_yz", stress.yz) + scalars("sigma_xz", stress.xz) : std::string();
 
@@ -146,7 +159,7 @@ std::string vtu_document(const RunReport& report) {
       << scalars("sigma_xy", stress.xy) << scalars("sigma_zz", stress.zz) << shear_3d
       << scalars("von_mises", stress.von_mises) << scalars("contact_pressure", contact.pressure)
       << vectors("contact_force", contact.force, dim) << scalars("gap", contact.gap)
-      << scalars("contact_boundary", contact.mask) << "      </PointData>\n"
+      << scalars("contact_boundary", contact.mask) << body_array << "      </PointData>\n"
       << "      <Points>\n"
       << data_array("Float64", "Points", 3, points) << "      </Points>\n"
       << "      <Cells>\n"

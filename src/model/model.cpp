@@ -101,6 +101,7 @@ Mesh scene_mesh(const Scene& scene, const BuildOptions& options) {
 }
 
 Model build_model(const Scene& scene, const BuildOptions& options) {
+  if (!scene.bodies.empty()) return detail::build_bodies_model(scene, options);
   Model model;
   choose_max_gap(scene, model);
 

@@ -10,6 +10,9 @@ namespace contactqp::detail {
 // exceed options.max_elements or cannot be made.
 Mesh mesh_body(const Scene& scene, double max_gap, const BuildOptions& options);
 
+// bodies_model.cpp: build_model() for a scene with several bodies (scene.bodies).
+Model build_bodies_model(const Scene& scene, const BuildOptions& options);
+
 // mesh_names.cpp: every boundary, region and point the scene names exists in the mesh (the
 // names of a mesh body are known only now); the symmetry boundary of a mesh body lies on x = 0.
 void check_mesh_names(const Scene& scene, const Mesh& mesh);

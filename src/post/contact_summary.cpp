@@ -144,6 +144,7 @@ ContactSummary summarize_contact(const Model& model, const QuadraticProgram& qp,
   }
   for (int i = 0; i < qp.n_constraints(); ++i) {
     const Candidate& candidate = model.candidates[i];
+    if (candidate.pair >= 0) continue;  // between two bodies: summarize_pairs
     const ObstacleSpec& obstacle = model.scene.obstacles[candidate.obstacle];
     const Eigen::Vector3d& x = model.mesh.nodes[candidate.node];
     ContactProfilePoint point;
@@ -161,6 +162,7 @@ ContactSummary summarize_contact(const Model& model, const QuadraticProgram& qp,
     std::vector<size_t> next(n_obstacles, 0);
     for (int i = 0; i < qp.n_constraints(); ++i) {
       const int o = model.candidates[i].obstacle;
+      if (o < 0) continue;
       summary.obstacles[o].profile[next[o]++].pressure = pressure[i];
     }
   }

@@ -8,7 +8,7 @@ std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, 
                                 const Eigen::VectorXd& lambda) {
   const Mesh& mesh = model.mesh;
   const Eigen::VectorXd displacement = full_displacement(model, u);
-  const ElementLaw law = element_law(model.scene);
+  const std::vector<ElementLaw> laws = element_laws(model);
   const int npe = mesh.nodes_per_element();
   const int dim = model.dim;
   // Internal forces K u in the global axes, element by element (K of the prescribed DOFs too).
@@ -21,12 +21,20 @@ std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, 
       x[i] = mesh.nodes[v[i]];
       ue.segment(dim * i, dim) = displacement.segment(dim * v[i], dim);
     }
-    const Eigen::VectorXd fe = element_stiffness(mesh.type(), x.data(), law, model.scene.body.thickness) * ue;
+    const Eigen::VectorXd fe =
+        element_stiffness(mesh.type(), x.data(), laws[body_of_element(model, e)], model.scene.body.thickness) * ue;
     for (int i = 0; i < npe; ++i) residual.segment(dim * v[i], dim) += fe.segment(dim * i, dim);
   }
-  // The obstacles push node i with λ n: what remains is the support's push.
+  // The obstacles push node i with λ n (a pair's row also its face nodes with −λ N_j n): what
+  // remains is the support's push.
   for (int i = 0; i < qp.n_constraints(); ++i) {
     const Candidate& c = model.candidates[i];
+    if (c.pair >= 0) {
+      residual.segment(dim * c.node, dim) -= lambda[i] * c.normal.head(dim);
+      for (int j = 0; j < c.n_face_nodes; ++j)
+        residual.segment(dim * c.face_nodes[j], dim) += lambda[i] * c.weights[j] * c.normal.head(dim);
+      continue;
+    }
     const Eigen::Vector3d n = detail::project(model.scene.obstacles[c.obstacle], mesh.nodes[c.node]).normal;
     residual.segment(dim * c.node, dim) -= lambda[i] * n.head(dim);
   }

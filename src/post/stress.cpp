@@ -19,9 +19,7 @@ struct StressSums {
 void add_triangles(const Model& model, const Eigen::VectorXd& displacement, StressSums& sums) {
   const Mesh& mesh = model.mesh;
   const int npe = mesh.nodes_per_element();
-  const ElementLaw law = element_law(model.scene);
-  const Eigen::Matrix3d D = law.D;
-  const bool mixed = law.formulation == Formulation::Mixed;
+  const std::vector<ElementLaw> laws = element_laws(model);
   Eigen::Matrix<double, 2, Eigen::Dynamic> X(2, npe), U(2, npe);
   std::vector<Eigen::Vector3d> nodes(npe);
   Eigen::VectorXd ue(2 * npe);
@@ -33,6 +31,9 @@ void add_triangles(const Model& model, const Eigen::VectorXd& displacement, Stre
       U.col(i) = displacement.segment<2>(2 * v[i]);
       ue.segment<2>(2 * i) = U.col(i);
     }
+    const ElementLaw& law = laws[body_of_element(model, e)];
+    const Eigen::Matrix3d D = law.D;
+    const bool mixed = law.formulation == Formulation::Mixed;
     const double area = std::abs(element_area(mesh, e));
     const double pressure = mixed ? law.bulk * element_mean_dilatation(nodes.data(), mesh.order, ue) : 0.0;
     for (int i = 0; i < npe; ++i) {
@@ -60,7 +61,7 @@ void add_triangles(const Model& model, const Eigen::VectorXd& displacement, Stre
 void add_tetrahedra(const Model& model, const Eigen::VectorXd& displacement, StressSums& sums) {
   const Mesh& mesh = model.mesh;
   const int npe = mesh.nodes_per_element();
-  const Eigen::Matrix<double, 6, 6> D = element_law(model.scene).D;
+  const std::vector<ElementLaw> laws = element_laws(model);
   Eigen::Matrix<double, 3, Eigen::Dynamic> X(3, npe), U(3, npe);
   for (int e = 0; e < mesh.n_elements(); ++e) {
     const int* v = mesh.element(e);
@@ -68,6 +69,7 @@ void add_tetrahedra(const Model& model, const Eigen::VectorXd& displacement, Str
       X.col(i) = mesh.nodes[v[i]];
       U.col(i) = displacement.segment<3>(3 * v[i]);
     }
+    const Eigen::Matrix<double, 6, 6> D = laws[body_of_element(model, e)].D;
     const double volume = std::abs(element_measure(mesh, e));
     for (int i = 0; i < npe; ++i) {
       const Eigen::Vector3d at = detail::reference_tetrahedron_node(i);

@@ -76,6 +76,17 @@ CompareReport compare_scene(const Scene& scene, const CompareOptions& options) {
     run.result.K_factor.reset();  // a factor per backend is memory the next one may need
     run.certificate = certify(*qp, run.result.u, run.result.lambda, &K_factor);
     run.contact = summarize_contact(*model, *qp, run.result.u, run.result.lambda);
+    if (!model->bodies.empty() && model->scene.obstacles.empty()) {
+      // Bodies without obstacles: the table's zone is the first pair's.
+      const std::vector<PairContact> pairs = summarize_pairs(*model, *qp, run.result.u, run.result.lambda);
+      if (!pairs.empty()) {
+        run.contact.total_force = pairs[0].total_force;
+        run.contact.half_width = pairs[0].half_width;
+        run.contact.contact_radius = pairs[0].contact_radius;
+        run.contact.max_pressure = pairs[0].max_pressure;
+        run.contact.contact_nodes = pairs[0].contact_nodes;
+      }
+    }
     report.runs.push_back(std::move(run));
   }
 

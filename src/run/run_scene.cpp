@@ -1,4 +1,6 @@
 // run_scene(): one scene from model to post-processed report (run.hpp).
+#include <algorithm>
+
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/run.hpp"
@@ -36,11 +38,18 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   phase("postprocess");
   clock.restart();
   report.contact = summarize_contact(*model, *qp, report.result.u, report.result.lambda);
-  if (!report.no_contact) {
+  // With several bodies the obstacles' Hertz would need each body's material: the pairs have theirs.
+  if (!report.no_contact && model->bodies.empty()) {
     report.hertz = compare_with_hertz(*model, report.contact);
     report.boussinesq = compare_with_boussinesq(*model, report.contact);
   }
   report.reactions = reactions(*model, *qp, report.result.u, report.result.lambda);
+  report.pairs = summarize_pairs(*model, *qp, report.result.u, report.result.lambda);
+  // The largest contact pressure anywhere, as the VTU's contact_pressure field holds it: the
+  // pairs' nodal pressures on both sides too.
+  for (const PairContact& pair : report.pairs)
+    report.contact.max_pressure =
+        std::max({report.contact.max_pressure, pair.max_nodal_pressure, pair.face_max_pressure});
   report.timings.add("postprocess", clock.seconds());
 
   report.warnings = model->warnings;
@@ -50,6 +59,13 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
                               " boundary nodes outside the candidate set penetrate an obstacle (by up to " +
                               detail::format_value(report.contact.max_non_candidate_penetration) +
                               "); raise contact.max_gap");
+  for (const PairContact& pair : report.pairs)
+    if (pair.slipped_nodes > 0 && !report.no_contact)
+      report.warnings.push_back(std::to_string(pair.slipped_nodes) + " loaded nodes of " + pair.node_side +
+                                " slid off the faces of " + pair.face_side +
+                                " their rows were linearised on (tangential slip up to " +
+                                detail::format_value(pair.max_slip) +
+                                "); the small-slip rows are then inexact: refine, or shorten the load step");
   // "total" is the whole run: the backend's own total stays under its name in the registry.
   Timings timings;
   for (const auto& [phase, seconds] : report.timings.phases())

@@ -25,6 +25,21 @@ std::string join(const std::vector<std::string>& words);
 [[noreturn]] void unknown_choice(const std::string& path, const std::string& value, const std::string& what,
                                  const std::vector<std::string>& valid);
 
+// A section that may be one object or an array of them ("load": {...} or "load": [{...}]):
+// each entry with its field path ("load", "load[2]").
+std::vector<std::pair<const nlohmann::json*, std::string>> one_or_many(const nlohmann::json& value,
+                                                                       const std::string& path);
+
+// `solver`.
+void read_solver(JsonObject solver, SolveOptions& options);
+
+// `material` (E, ν), each error naming the field under the object's path.
+Material read_material(JsonObject material);
+
+// bodies_reader.cpp: a scene with a "bodies" list — every body (name, material, shape, loads,
+// placement), `contact` (pairs and obstacle boundaries), `obstacle`, `solver` — into `scene`.
+void read_bodies(JsonObject& root, Scene& scene, const std::string& source);
+
 // `body`: the shape and its mesh. `source` is the scene file, against whose directory a mesh
 // file is resolved.
 BodySpec read_body(JsonObject body, const std::string& source, int dim);

@@ -25,6 +25,9 @@ ContactSpec read_contact(JsonObject contact, const BodySpec& body);
 
 }  // namespace
 
+using detail::one_or_many;
+using detail::read_solver;
+
 namespace detail {
 
 Eigen::Vector3d read_vector(const json& value, const std::string& path, int dim) {
@@ -60,6 +63,22 @@ void unknown_choice(const std::string& path, const std::string& value, const std
                              (hint.empty() ? "" : "; did you mean \"" + hint + "\"?"));
 }
 
+Material read_material(JsonObject material) {
+  Material m;
+  const std::string E_path = material.path_of("E"), nu_path = material.path_of("nu");
+  m.E = material.number("E");
+  require(m.E > 0, E_path, m.E, "must be positive");
+  m.nu = material.number("nu");
+  require(m.nu > -1 && m.nu < 0.5, nu_path, m.nu, "must lie in (-1, 0.5)");
+  // The largest entry of D, E(1 − ν)/((1 + ν)(1 − 2ν)), and the bulk modulus must be numbers.
+  const double nu = m.nu, stiffest = m.E / ((1 + nu) * (1 - 2 * nu)) * std::max(1.0, 1 - nu);
+  require(std::isfinite(stiffest) && std::isfinite(m.E / (3 * (1 - 2 * nu))), E_path, m.E,
+          "overflows double precision in the elasticity matrix with " + nu_path + " = " + detail::format_value(nu) +
+              "; use other units");
+  material.finish();
+  return m;
+}
+
 void require_boundary(const std::string& name, const BodySpec& body, const std::string& path) {
   if (body.shape == "mesh") return;  // its physical groups are known once the mesh is read
   const std::vector<std::string> names = boundary_names(body);
@@ -70,10 +89,6 @@ void require_boundary(const std::string& name, const BodySpec& body, const std::
                              (body.symmetry ? " with symmetry" : "") + "; valid: " + join(names) +
                              (hint.empty() ? "" : "; did you mean \"" + hint + "\"?"));
 }
-
-}  // namespace detail
-
-namespace {
 
 // A section that may be one object or an array of them ("load": {...} or "load": [{...}]).
 std::vector<std::pair<const json*, std::string>> one_or_many(const json& value, const std::string& path) {
@@ -86,6 +101,9 @@ std::vector<std::pair<const json*, std::string>> one_or_many(const json& value, 
   }
   return items;
 }
+
+}  // namespace detail
+namespace {
 
 std::string default_contact_boundary(const BodySpec& body, int dim) {
   if (body.shape == "half_disc") return "arc";
@@ -106,6 +124,9 @@ ContactSpec read_contact(JsonObject contact, const BodySpec& body) {
   contact.finish();
   return spec;
 }
+
+}  // namespace
+namespace detail {
 
 void read_solver(JsonObject solver, SolveOptions& options) {
   if (auto backend = solver.optional_string("backend"))
@@ -150,7 +171,7 @@ void read_solver(JsonObject solver, SolveOptions& options) {
   solver.finish();
 }
 
-}  // namespace
+}  // namespace detail
 
 std::string to_string(ElasticModel model) {
   switch (model) {
@@ -261,18 +282,12 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   // a 2.2 GB peak against AMD's 129 s and 4.6 GB (docs/3d.md). 2D keeps AMD, measured best there.
   if (dim == 3) scene.solver.ordering = Ordering::Metis;
 
-  JsonObject material = root.object("material");
-  scene.material.E = material.number("E");
-  require(scene.material.E > 0, "material.E", scene.material.E, "must be positive");
-  scene.material.nu = material.number("nu");
-  require(scene.material.nu > -1 && scene.material.nu < 0.5, "material.nu", scene.material.nu, "must lie in (-1, 0.5)");
-  // The largest entry of D, E(1 − ν)/((1 + ν)(1 − 2ν)), and the bulk modulus must be numbers.
-  const double nu = scene.material.nu, stiffest = scene.material.E / ((1 + nu) * (1 - 2 * nu)) * std::max(1.0, 1 - nu);
-  require(std::isfinite(stiffest) && std::isfinite(scene.material.E / (3 * (1 - 2 * nu))), "material.E",
-          scene.material.E,
-          "overflows double precision in the elasticity matrix with material.nu = " + detail::format_value(nu) +
-              "; use other units");
-  material.finish();
+  if (root.has("bodies")) {  // several bodies (bodies_reader.cpp)
+    detail::read_bodies(root, scene, source);
+    root.finish();
+    return scene;
+  }
+  scene.material = detail::read_material(root.object("material"));
 
   scene.body = detail::read_body(root.object("body"), source, dim);
   // Plane stress has a finite bulk stiffness E/(2(1 − ν)) whatever ν: nothing locks, nothing to mix.
