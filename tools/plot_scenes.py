@@ -118,6 +118,6 @@ def plot(scene_path):
 
 
 if __name__ == "__main__":
-    scenes = sys.argv[1:] or sorted(p for p in glob.glob(os.path.join(ROOT, "scenes", "*.json")) if "hertz-large" not in p)
+    scenes = sys.argv[1:] or sorted(p for p in glob.glob(os.path.join(ROOT, "scenes", "*.json")) if "-large" not in p)
     for path in scenes:
         plot(path)

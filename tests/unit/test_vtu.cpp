@@ -79,9 +79,11 @@ void check_vtu_of(const std::string& scene) {
 
 }  // namespace
 
+// The large scenes (hertz-large.json, 1.1e5 DOFs; hertz-sphere-large.json, 1.27e6 DOFs, minutes
+// and about 10 GB) are left to the slow case and to their own runs (docs/3d.md).
 TEST_CASE("the VTU of every shipped scene reads back in VTK with the named arrays", "[unit][vtu]") {
   for (const std::string& scene : shipped_scenes())
-    if (scene != "hertz-large.json") check_vtu_of(scene);
+    if (scene.find("-large.json") == std::string::npos) check_vtu_of(scene);
 }
 
 TEST_CASE("the VTU of the large Hertz scene reads back in VTK", "[.slow][vtu]") { check_vtu_of("hertz-large.json"); }
