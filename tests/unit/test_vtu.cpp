@@ -79,8 +79,7 @@ void check_vtu_of(const std::string& scene) {
 
 }  // namespace
 
-// The large scenes (hertz-large.json, 1.1e5 DOFs; hertz-sphere-large.json, 1.27e6 DOFs, minutes
-// and about 10 GB) are left to the slow case and to their own runs (docs/3d.md).
+// The large scenes ("-large": hertz-large.json, 1.1e5 DOFs) are left to the slow case below.
 TEST_CASE("the VTU of every shipped scene reads back in VTK with the named arrays", "[unit][vtu]") {
   for (const std::string& scene : shipped_scenes())
     if (scene.find("-large.json") == std::string::npos) check_vtu_of(scene);
