@@ -43,7 +43,7 @@ void zero_separated_multipliers(const QuadraticProgram& qp, SolveResult& result,
   // The stationarity residual r = Ku − f + Bᵀλ, and the bound each of its entries must keep:
   // the relative residual it had, or tol, measured by the part of the force scale that the
   // zeros cannot lower (‖f‖∞, ‖Ku‖∞).
-  const VectorXd Ku = qp.K * u;
+  const VectorXd Ku = K_times(qp, u);
   const VectorXd Btl = qp.B.transpose() * lambda;
   VectorXd r = Ku - qp.f + Btl;
   const double fixed_force = std::max(inf_norm(qp.f), inf_norm(Ku));

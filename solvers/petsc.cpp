@@ -7,6 +7,7 @@
 //   iterate     the bound QP in PETSc, every rank holding its rows of A
 //   recover     u = Q v, λ = μ
 #include <algorithm>
+#include <utility>
 
 #include "backend_options.hpp"
 #include "backends.hpp"
@@ -17,18 +18,23 @@
 namespace contactqp::detail {
 namespace {
 
-std::string effective_method(const SolveOptions& options) {
-  std::string method = "pdas";
+// The backend options: method=pdas|tao, inexact=true|false (pdas's loose early steps).
+BoundQpOptions backend_settings(const SolveOptions& options) {
+  BoundQpOptions settings;
   for (const auto& [key, value] : options_for(Backend::Petsc, options.backend_options)) {
     if (key == "method") {
       if (value != "pdas" && value != "tao")
         throw InputError(option_field(key), "= \"" + value + "\": not a method of petsc; valid: pdas, tao");
-      method = value;
+      settings.method = value;
+    } else if (key == "inexact") {
+      if (value != "true" && value != "false" && value != "1" && value != "0")
+        throw InputError(option_field(key), "= \"" + value + "\": not true or false");
+      settings.inexact = value == "true" || value == "1";
     } else {
-      throw InputError(option_field(key), "= \"" + value + "\": not an option of petsc; valid: method");
+      throw InputError(option_field(key), "= \"" + value + "\": not an option of petsc; valid: method, inexact");
     }
   }
-  return method;
+  return settings;
 }
 
 // The relative KKT residual of certificate.hpp without stationarity (which the inner solves
@@ -47,7 +53,7 @@ double relative_residual(const QuadraticProgram& qp, const VectorXd& u, const Ve
 
 }  // namespace
 
-void check_petsc_options(const SolveOptions& options) { effective_method(options); }
+void check_petsc_options(const SolveOptions& options) { backend_settings(options); }
 
 SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options) {
   SolveResult result;
@@ -61,8 +67,7 @@ SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options)
   }
   result.timings.add("transform", clock.seconds());
 
-  BoundQpOptions settings;
-  settings.method = effective_method(options);
+  BoundQpOptions settings = backend_settings(options);
   settings.tol = options.tol;
   settings.max_iterations = options.max_iterations;
   settings.petsc_options = options.petsc_options;
@@ -74,7 +79,7 @@ SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options)
     settings.observer = [&](int k, const VectorXd& v, const VectorXd& mu) {
       options.observer(k, VectorXd(form.Q * v), mu);
     };
-  const BoundQpResult solved = solve_bound_qp_petsc(form.problem, settings);
+  const BoundQpResult solved = solve_bound_qp_petsc(std::move(form.problem), settings);
   result.timings.add("factorize", solved.setup_seconds);
   result.timings.add("iterate", solved.iterate_seconds);
   result.timings.add("solve", solved.iterate_seconds);
@@ -90,6 +95,10 @@ SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options)
   result.diagnostics["kkt_residual"] = solved.residual;
   result.diagnostics["petsc_matrix_mb_per_rank"] = solved.matrix_bytes / 1048576.0;
   result.diagnostics["petsc_memory_mb_per_rank"] = solved.petsc_bytes / 1048576.0;
+  // What this rank assembled: the whole K, or under mpirun its share (qp.hpp); rank 0's in the
+  // result files.
+  result.diagnostics["k_rank_share"] = qp.K_is_rank_share ? 1 : 0;
+  result.diagnostics["k_nonzeros_this_rank"] = static_cast<double>(qp.K.nonZeros());
 
   const std::string how = solved.method + "; " + std::to_string(solved.iterations) + " outer steps, " +
                           std::to_string(solved.krylov_iterations) + " Krylov iterations; " +

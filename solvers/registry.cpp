@@ -19,6 +19,8 @@ LinearSolverOptions linear_solver_options(const QuadraticProgram& qp, const Solv
   settings.tol = options.tol;
   settings.petsc_options = options.petsc_options;
   settings.near_null_space = qp.near_null_space;
+  settings.rank_share = qp.K_is_rank_share;
+  settings.distributed_row = qp.distributed_row;
   settings.verbose = options.verbose;
   return settings;
 }
@@ -147,6 +149,12 @@ std::vector<Backend> available_backends() {
 SolveResult solve(const QuadraticProgram& qp, const SolveOptions& options) {
   validate(qp);
   detail::validate_options(options);
+  if (qp.K_is_rank_share && options.backend != Backend::Petsc)
+    throw InputError("backend",
+                     "= " + to_string(options.backend) +
+                         ": K is assembled in shares over the MPI ranks, which only the petsc backend solves");
+  // The shares are summed (scaling, certificate) by MPI, which PETSc starts.
+  if (qp.K_is_rank_share) start_petsc_runtime(options.petsc_options);
   Stopwatch clock;
 
   SolveResult result;

@@ -4,6 +4,7 @@
 
 #include "../src/qp/norms.hpp"
 #include "contactqp/linear_solver.hpp"
+#include "contactqp/processes.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -16,7 +17,10 @@ const char* const kEigenvalueDiagnostics[] = {"lambda_max_S", "lambda_min_S"};
 
 QpScaling choose_scaling(const QuadraticProgram& qp) {
   QpScaling scaling;
-  const double kappa = qp.K.rows() ? qp.K.diagonal().cwiseAbs().maxCoeff() : 0.0;
+  VectorXd diagonal = qp.K.diagonal();
+  // A rank's share holds part of each diagonal entry at its boundary: the ranks' sum is K's.
+  if (qp.K_is_rank_share) sum_over_ranks(diagonal.data(), diagonal.size());
+  const double kappa = diagonal.size() ? diagonal.cwiseAbs().maxCoeff() : 0.0;
   if (kappa > 0 && std::isfinite(kappa)) scaling.stiffness = kappa;
   const double from_load = inf_norm(qp.f) / scaling.stiffness;
   const double from_gap = inf_norm(qp.g);
@@ -35,6 +39,8 @@ QuadraticProgram scaled_qp(const QuadraticProgram& qp, const QpScaling& scaling)
   scaled.g = qp.g / scaling.displacement;
   scaled.rows = qp.rows;
   scaled.near_null_space = qp.near_null_space;  // directions: unchanged by the scaling of K
+  scaled.K_is_rank_share = qp.K_is_rank_share;
+  scaled.distributed_row = qp.distributed_row;
   return scaled;
 }
 

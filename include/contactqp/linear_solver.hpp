@@ -106,6 +106,12 @@ struct LinearSolverOptions {
   // n × k near-null space of A (rigid-body modes on the free DOFs), for algebraic multigrid;
   // empty when unknown. Not referenced after construction.
   Eigen::MatrixXd near_null_space;
+  // A is this rank's share of the matrix (QuadraticProgram::K_is_rank_share): the matrix to
+  // solve is the sum of the ranks' shares. Only the petsc kind takes one.
+  bool rank_share = false;
+  // The row of each unknown in a distributed matrix (QuadraticProgram::distributed_row), or
+  // empty for their own order. PETSc only.
+  std::vector<int> distributed_row;
   bool verbose = false;  // let the library print its own log
 };
 

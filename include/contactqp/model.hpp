@@ -95,9 +95,18 @@ inline int body_of_element(const Model& model, int e) { return model.element_bod
 // be modelled (element limit, a boundary condition that penetrates an obstacle, ...).
 Model build_model(const Scene& scene, const BuildOptions& options = {});
 
-// Assembles K (free DOFs), f (prescribed displacements moved to the right-hand side), and
-// one row of B and g per candidate. Records "assemble" in model timings.
-QuadraticProgram assemble_qp(Model& model);
+// Which elements assemble_qp() adds to K: all of them (the default), or under mpirun with the
+// petsc backend this rank's share (qp.hpp's K_is_rank_share): the elements whose first free
+// DOF lies in the rank's block of rows, PETSc's split of the rows into contiguous blocks.
+struct RankShare {
+  int rank = 0;
+  int ranks = 1;
+};
+
+// Assembles K (free DOFs; the whole, or a rank's share), f (prescribed displacements moved to
+// the right-hand side) and one row of B and g per candidate, f, B and g whole on every rank.
+// Records "assemble" in model timings.
+QuadraticProgram assemble_qp(Model& model, const RankShare& share = {});
 
 // The full nodal displacement field (dim·n_nodes, global axes) from the free DOFs u.
 Eigen::VectorXd full_displacement(const Model& model, const Eigen::VectorXd& u);

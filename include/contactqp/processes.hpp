@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace contactqp {
 
@@ -11,6 +12,18 @@ namespace contactqp {
 int process_rank();
 // The number of MPI processes once MPI runs (the launcher's count before), else 1.
 int process_count();
+
+// In place, the sum of `values` over the ranks (MPI_Allreduce; collective). Nothing while MPI
+// does not run on several processes. For QPs whose K each rank holds a share of (qp.hpp).
+void sum_over_ranks(double* values, long n);
+
+// Splits a graph (vertex v's neighbours are neighbours[offsets[v]] .. neighbours[offsets[v + 1] − 1])
+// into `parts` parts of nearly equal size with few edges between them: PETSc's
+// MatPartitioning with PT-Scotch (-mat_partitioning_type in `petsc_options` or PETSC_OPTIONS
+// chooses another). part[v] for every vertex, the same on every rank. Collective under
+// mpirun; starts PETSc. All zeros for one part or without PETSc; empty if PETSc failed.
+std::vector<int> partition_graph(const std::vector<long>& offsets, const std::vector<int>& neighbours, int parts,
+                                 const std::string& petsc_options = "");
 
 // How a run ends on every rank at once. Every rank passes its exit status and its error line
 // (empty when it has none); the lowest rank with a line prints it to stderr, once for the run,

@@ -39,6 +39,16 @@ struct QuadraticProgram {
   // n × k rigid-body modes on the free DOFs (k = 3 in 2D), for algebraic multigrid in an
   // iterative solver of K; empty when unknown. Filled by assemble_qp; backends never need it.
   Eigen::MatrixXd near_null_space;
+  // Under mpirun with the petsc backend each process assembles only the elements it owns
+  // (assemble_qp's RankShare, docs/petsc.md): K then holds this process's share and the
+  // problem's K is the sum of the shares over the ranks. Only the petsc backend solves such a
+  // QP; K_times(), primal_objective() and certify() sum over the ranks (collective calls).
+  // f, B, g and near_null_space are whole on every rank either way.
+  bool K_is_rank_share = false;
+  // With a rank share: the row of each DOF in the distributed matrix, a permutation that puts
+  // the DOFs of each part of a mesh partition together, so that each rank's block of rows is a
+  // compact piece of the body. Empty: the DOFs' own order.
+  std::vector<int> distributed_row;
 
   int n_dofs() const { return static_cast<int>(K.rows()); }
   int n_constraints() const { return static_cast<int>(B.rows()); }
@@ -48,7 +58,10 @@ struct QuadraticProgram {
 // entry is not finite. Cheap: O(nnz).
 void validate(const QuadraticProgram& qp);
 
-// J(u) = ½ uᵀKu − fᵀu.
+// K u, summed over the ranks when K is a rank share (then collective).
+VectorXd K_times(const QuadraticProgram& qp, const VectorXd& u);
+
+// J(u) = ½ uᵀKu − fᵀu (collective when K is a rank share).
 double primal_objective(const QuadraticProgram& qp, const VectorXd& u);
 
 enum class Backend {

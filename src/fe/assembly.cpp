@@ -7,6 +7,7 @@
 #include "../model/rigid_body_modes.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/model.hpp"
+#include "rank_share.hpp"
 #include "stiffness_matrix.hpp"
 
 namespace contactqp {
@@ -60,14 +61,22 @@ Eigen::MatrixXd dof_frame_rotated(const Model& model, const int* v, int npe, Eig
 }
 }  // namespace detail
 
-QuadraticProgram assemble_qp(Model& model) {
+QuadraticProgram assemble_qp(Model& model, const RankShare& share) {
   Stopwatch clock;
   const Mesh& mesh = model.mesh;
   const int dim = mesh.dim;
 
   QuadraticProgram qp;
   qp.f = Eigen::VectorXd::Zero(model.n_free);
-  detail::assemble_stiffness(model, qp.K, qp.f);
+  if (share.ranks > 1) {
+    qp.K_is_rank_share = true;
+    qp.distributed_row = detail::distributed_rows(model, share.ranks);
+    if (qp.distributed_row.empty())
+      model.warnings.push_back(
+          "the mesh could not be partitioned between the MPI ranks (PETSc's MatPartitioning "
+          "failed): each rank assembles the elements of a block of DOFs in their own order");
+  }
+  detail::assemble_stiffness(model, share, qp.distributed_row, qp.K, qp.f);
   // Force loads: f_a = Tᵀ f_x at each node (T its DOF frame); forces at prescribed DOFs go
   // to the reactions.
   for (int node = 0; node < mesh.n_nodes(); ++node) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "contactqp/mesh.hpp"
+#include "rank_share.hpp"
 
 namespace contactqp::detail {
 
@@ -39,17 +40,21 @@ void in_parallel(int n, const Work& work) {
   for (std::thread& thread : threads) thread.join();
 }
 
-// K's compressed pattern (column starts, row indices ascending), values zero.
-void build_pattern(const Model& model, Eigen::SparseMatrix<double>& K) {
+// K's compressed pattern (column starts, row indices ascending), values zero: the entries the
+// owned elements add to.
+void build_pattern(const Model& model, const std::vector<char>& owned, Eigen::SparseMatrix<double>& K) {
   const Mesh& mesh = model.mesh;
   const int npe = mesh.nodes_per_element(), dim = mesh.dim, n_nodes = mesh.n_nodes();
   // Elements at each node (CSR), then each node's neighbours: the nodes of those elements.
   std::vector<int> first(n_nodes + 1, 0);
-  for (int node : mesh.elements) ++first[node + 1];
+  for (int e = 0; e < mesh.n_elements(); ++e)
+    if (owned[e])
+      for (int k = 0; k < npe; ++k) ++first[mesh.element(e)[k] + 1];
   for (int n = 0; n < n_nodes; ++n) first[n + 1] += first[n];
   std::vector<int> element_at(first.back()), next(first.begin(), first.end() - 1);
   for (int e = 0; e < mesh.n_elements(); ++e)
-    for (int k = 0; k < npe; ++k) element_at[next[mesh.element(e)[k]]++] = e;
+    if (owned[e])
+      for (int k = 0; k < npe; ++k) element_at[next[mesh.element(e)[k]]++] = e;
 
   std::vector<int> free_of_node(n_nodes, 0);  // free DOFs per node
   for (int n = 0; n < n_nodes; ++n)
@@ -60,7 +65,7 @@ void build_pattern(const Model& model, Eigen::SparseMatrix<double>& K) {
   std::vector<std::vector<int>> rows_of_node(n_nodes);
   std::size_t nnz = 0;
   for (int n = 0; n < n_nodes; ++n) {
-    if (free_of_node[n] == 0) continue;
+    if (free_of_node[n] == 0 || first[n] == first[n + 1]) continue;
     neighbours.clear();
     for (int k = first[n]; k < first[n + 1]; ++k) {
       const int* v = mesh.element(element_at[k]);
@@ -95,14 +100,16 @@ void build_pattern(const Model& model, Eigen::SparseMatrix<double>& K) {
 
 }  // namespace
 
-void assemble_stiffness(const Model& model, Eigen::SparseMatrix<double>& K, Eigen::VectorXd& f) {
+void assemble_stiffness(const Model& model, const RankShare& share, const std::vector<int>& distributed_row,
+                        Eigen::SparseMatrix<double>& K, Eigen::VectorXd& f) {
   const Mesh& mesh = model.mesh;
   const std::vector<ElementLaw> laws = element_laws(model);  // one per body
   const double thickness = model.scene.body.thickness;
   const int npe = mesh.nodes_per_element(), dim = mesh.dim, n = dim * npe;
   const ElementType type = mesh.type();
   const int n_elements = mesh.n_elements();
-  build_pattern(model, K);
+  const std::vector<char> owned = owned_elements(model, share, distributed_row);
+  build_pattern(model, owned, K);
   const int* outer = K.outerIndexPtr();
   const int* inner = K.innerIndexPtr();
   double* values = K.valuePtr();
@@ -118,12 +125,28 @@ void assemble_stiffness(const Model& model, Eigen::SparseMatrix<double>& K, Eige
     for (int i = 0; i < npe; ++i)
       for (int c = 0; c < dim; ++c) dofs[dim * i + c] = dim * v[i] + c;
   };
+  // Every rank moves every element's prescribed displacements to f (f is whole on every rank):
+  // an element that is not this rank's still needs its matrix when it has a nonzero one.
+  std::vector<char> moves_prescribed(n_elements, 0);
+  for (int e = 0; e < n_elements; ++e) {
+    if (owned[e]) continue;
+    const int* v = mesh.element(e);
+    bool free = false, prescribed = false;
+    for (int i = 0; i < npe; ++i)
+      for (int c = 0; c < dim; ++c) {
+        const int dof = dim * v[i] + c;
+        free = free || model.free_index[dof] >= 0;
+        prescribed = prescribed || (model.free_index[dof] < 0 && model.prescribed[dof] != 0);
+      }
+    moves_prescribed[e] = free && prescribed;
+  }
 
   for (int start = 0; start < n_elements; start += kChunk) {
     const int end = std::min(n_elements, start + kChunk);
     in_parallel(n_threads, [&](int t) {  // the element matrices of the chunk
       std::vector<Eigen::Vector3d> coordinates(npe);
       for (int e = start + (end - start) * t / n_threads; e < start + (end - start) * (t + 1) / n_threads; ++e) {
+        if (!owned[e] && !moves_prescribed[e]) continue;
         const int* v = mesh.element(e);
         for (int i = 0; i < npe; ++i) coordinates[i] = mesh.nodes[v[i]];
         Ke[e - start] = dof_frame_rotated(
@@ -133,6 +156,7 @@ void assemble_stiffness(const Model& model, Eigen::SparseMatrix<double>& K, Eige
     in_parallel(n_threads, [&](int t) {  // added in element order, each thread to its own columns
       std::vector<int> dofs(n);
       for (int e = start; e < end; ++e) {
+        if (!owned[e]) continue;
         dofs_of(e, dofs.data());
         const Eigen::MatrixXd& k = Ke[e - start];
         for (int j = 0; j < n; ++j) {
@@ -151,6 +175,7 @@ void assemble_stiffness(const Model& model, Eigen::SparseMatrix<double>& K, Eige
     // The prescribed displacements to the right-hand side, in the serial loop's order.
     std::vector<int> dofs(n);
     for (int e = start; e < end; ++e) {
+      if (!owned[e] && !moves_prescribed[e]) continue;
       dofs_of(e, dofs.data());
       const Eigen::MatrixXd& k = Ke[e - start];
       for (int i = 0; i < n; ++i) {

@@ -3,12 +3,16 @@
 #pragma once
 
 #include <Eigen/SparseCore>
+#include <vector>
 
 #include "contactqp/model.hpp"
 
 namespace contactqp::detail {
 
-// K over the free DOFs (in the DOF frames), and f −= K_free,prescribed · u_prescribed.
-void assemble_stiffness(const Model& model, Eigen::SparseMatrix<double>& K, Eigen::VectorXd& f);
+// K over the free DOFs (in the DOF frames), the whole or this rank's share of it
+// (model.hpp's RankShare; rank_share.hpp, with the DOFs' rows `distributed_row`, empty for
+// their own order), and f −= K_free,prescribed · u_prescribed, whole on every rank.
+void assemble_stiffness(const Model& model, const RankShare& share, const std::vector<int>& distributed_row,
+                        Eigen::SparseMatrix<double>& K, Eigen::VectorXd& f);
 
 }  // namespace contactqp::detail

@@ -9,7 +9,7 @@
 
 namespace contactqp {
 double force_scale(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda) {
-  const VectorXd Ku = qp.K * u;
+  const VectorXd Ku = K_times(qp, u);
   const VectorXd Btl = qp.B.transpose() * lambda;
   return std::max({inf_norm(qp.f), inf_norm(Ku), inf_norm(Btl)});
 }
@@ -26,7 +26,7 @@ double Certificate::kkt_max() const {
 Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda,
                     const LinearSolver* K_factor) {
   Certificate c;
-  const VectorXd Ku = qp.K * u;
+  const VectorXd Ku = K_times(qp, u);
   const VectorXd Btl = qp.B.transpose() * lambda;
   const VectorXd r = Ku - qp.f + Btl;      // stationarity residual
   const VectorXd slack = qp.B * u - qp.g;  // ≤ 0 when feasible
@@ -48,11 +48,13 @@ Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorX
 
   // θ(λ) = L(u, λ) − ½ rᵀK⁻¹r: exact, and accurate near the optimum where r → 0.
   std::unique_ptr<CholeskyFactor> own_factor;
-  if (!K_factor) {
+  if (!K_factor && qp.K_is_rank_share) {
+    c.dual_available = false;  // no rank holds K to factorise; the backend passes its solver of K
+  } else if (!K_factor) {
     own_factor = std::make_unique<CholeskyFactor>(qp.K);
     K_factor = own_factor.get();
   }
-  if (K_factor->ok()) {
+  if (K_factor && K_factor->ok()) {
     const VectorXd Kinv_r = K_factor->solve(r);
     c.dual_objective = lagrangian - 0.5 * r.dot(Kinv_r);
     c.duality_gap = c.objective - c.dual_objective;

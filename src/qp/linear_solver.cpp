@@ -62,6 +62,8 @@ std::shared_ptr<const LinearSolver> make_linear_solver(const Eigen::SparseMatrix
                                                        const LinearSolverOptions& options) {
   switch (options.kind) {
     case LinearSolverKind::Cholmod:
+      require(!options.rank_share, "linear_solver", to_string(options.kind),
+              "cannot factorise a matrix assembled in shares over the MPI ranks (use petsc)");
       return std::make_shared<const CholeskyFactor>(A, options.ordering);
     case LinearSolverKind::Petsc:
       require(detail::petsc_available(), "linear_solver", to_string(options.kind),

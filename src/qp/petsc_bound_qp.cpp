@@ -23,6 +23,7 @@
 #include <sstream>
 
 #include "contactqp/timer.hpp"
+#include "petsc_matrix.hpp"
 #include "petsc_runtime.hpp"
 
 namespace contactqp::detail {
@@ -31,6 +32,11 @@ namespace {
 // The inner stopping rule of petsc_solver.cpp (docs/linear-solvers.md): ‖r‖₂ ≤ 1e-3 · tol · F,
 // so that stationarity stays a tenth of tol; the round-off floor as there.
 constexpr double kInnerFraction = 1e-3;
+// Inexact steps (pdas): while the active set is still changing, a step's KSP stops at this
+// fraction of the previous step's relative KKT residual (times the same force scale), never
+// below the final rule; the first step, whose only use is a first active set, at 1e-2 of F.
+// The stopping test is trusted only after a solve to the final rule.
+constexpr double kLooseFraction = 1e-2;
 constexpr double kRoundOff = 100 * 2.220446049250313e-16;
 constexpr PetscInt kMaxKrylovIterations = 10000;
 
@@ -52,6 +58,7 @@ struct Work {
   MatNullSpace modes = nullptr;
   void* default_test = nullptr;
   PetscInt first = 0, end = 0;  // the rows this rank owns
+  RowOrder order;               // the variables' rows in the distributed matrix
   int n = 0;
   double target = 0;  // the absolute residual the current KSP solve stops at
   double A_norm = 0;
@@ -77,7 +84,7 @@ struct Work {
     check(VecScatterEnd(to_all, v, x_all, INSERT_VALUES, SCATTER_FORWARD), "VecScatter");
     const PetscScalar* all = nullptr;
     VecGetArrayRead(x_all, &all);
-    Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(all, n);
+    Eigen::VectorXd out = order.to_dofs(all, n);
     VecRestoreArrayRead(x_all, &all);
     return out;
   }
@@ -85,7 +92,7 @@ struct Work {
   void set(Vec v, const Eigen::VectorXd& full) {
     PetscScalar* local = nullptr;
     VecGetArray(v, &local);
-    for (PetscInt row = first; row < end; ++row) local[row - first] = full[row];
+    order.to_local(full, first, end, local);
     VecRestoreArray(v, &local);
   }
 
@@ -121,36 +128,13 @@ struct Work {
 };
 
 void assemble(Work& work, const BoundQp& problem) {
-  const Eigen::SparseMatrix<double>& A = problem.A;
-  PetscInt local_rows = PETSC_DECIDE, global_rows = work.n;
-  check(PetscSplitOwnership(PETSC_COMM_WORLD, &local_rows, &global_rows), "PetscSplitOwnership");
-  MPI_Scan(&local_rows, &work.end, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
-  work.first = work.end - local_rows;
+  check(owned_rows(work.n, &work.first, &work.end), "PetscSplitOwnership");
+  const PetscInt local_rows = work.end - work.first;
   check(MatCreate(PETSC_COMM_WORLD, &work.A), "MatCreate");
   check(MatSetSizes(work.A, local_rows, local_rows, work.n, work.n), "MatSetSizes");
   check(MatSetType(work.A, MATAIJ), "MatSetType");
-  // A is symmetric with both triangles stored: column j of the column-major A is row j.
-  std::vector<PetscInt> diagonal_block(local_rows, 0), off_diagonal_block(local_rows, 0);
-  for (PetscInt row = work.first; row < work.end; ++row)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, static_cast<int>(row)); it; ++it)
-      ++(it.row() >= work.first && it.row() < work.end ? diagonal_block : off_diagonal_block)[row - work.first];
-  MatMPIAIJSetPreallocation(work.A, 0, diagonal_block.data(), 0, off_diagonal_block.data());
-  MatSeqAIJSetPreallocation(work.A, 0, diagonal_block.data());
-  std::vector<PetscInt> columns;
-  std::vector<PetscScalar> values;
-  for (PetscInt row = work.first; row < work.end; ++row) {
-    columns.clear();
-    values.clear();
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, static_cast<int>(row)); it; ++it) {
-      columns.push_back(it.row());
-      values.push_back(it.value());
-    }
-    check(MatSetValues(work.A, 1, &row, static_cast<PetscInt>(columns.size()), columns.data(), values.data(),
-                       INSERT_VALUES),
-          "MatSetValues");
-  }
-  check(MatAssemblyBegin(work.A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  check(MatAssemblyEnd(work.A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  const char* step = "";
+  check(fill_matrix(work.A, problem.A, problem.A_is_rank_share, work.order, work.first, work.end, &step), step);
   MatNorm(work.A, NORM_INFINITY, &work.A_norm);
   MatSetOption(work.A, MAT_SYMMETRIC, PETSC_TRUE);
   MatSetOption(work.A, MAT_SPD, PETSC_TRUE);
@@ -290,6 +274,10 @@ void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& option
   Eigen::VectorXd v = Eigen::VectorXd::Zero(work.n), mu = Eigen::VectorXd::Zero(m);
   std::vector<char> active(m, 0);  // the first step solves without bounds
   std::set<std::vector<char>> seen;
+  // Loose solves until a step's active set repeats or passes the test; then final-rule solves
+  // only (a loose step that passes is solved again from where it is).
+  bool tight = false;
+  double previous_residual = 1.0;
   for (int k = 1;; ++k) {
     seen.insert(active);
     // The system of this active set: v_i = upper_i on the active bounds, A v = b on the rest.
@@ -299,7 +287,8 @@ void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& option
     for (int i = 0; i < m; ++i)
       if (active[i]) {
         guess[problem.bounded[i]] = problem.upper[i];
-        if (problem.bounded[i] >= work.first && problem.bounded[i] < work.end) rows.push_back(problem.bounded[i]);
+        const PetscInt row = work.order.row(problem.bounded[i]);
+        if (row >= work.first && row < work.end) rows.push_back(row);
       }
     work.set(work.x, guess);
     check(VecCopy(work.b, work.rhs), "VecCopy");
@@ -307,8 +296,10 @@ void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& option
           "MatZeroRowsColumns");
     if (work.modes) check(MatSetNearNullSpace(work.W, work.modes), "MatSetNearNullSpace");
     check(KSPSetOperators(work.ksp, work.W, work.W), "KSPSetOperators");
-    work.target = kInnerFraction * options.tol * std::max(b_norm, inf_norm(mu));
-    if (work.target == 0) work.target = kInnerFraction * options.tol;
+    const double force = std::max(b_norm, inf_norm(mu));
+    const double final_target = force > 0 ? kInnerFraction * options.tol * force : kInnerFraction * options.tol;
+    const bool solved_tight = tight || !options.inexact;
+    work.target = solved_tight ? final_target : std::max(final_target, kLooseFraction * previous_residual * force);
     check(KSPSolve(work.ksp, work.rhs, work.x), "KSPSolve");
     work.petsc_bytes = std::max(work.petsc_bytes, petsc_bytes(work));
     PetscInt iterations = 0;
@@ -336,13 +327,26 @@ void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& option
     }
     if (options.observer) options.observer(k, v, mu.cwiseMax(0.0));
     result.residual = options.residual(v, mu);
+    previous_residual = std::min(1.0, result.residual);
+    std::vector<char> next(m, 0);
+    for (int i = 0; i < m; ++i)
+      next[i] = mu[i] + diagonal[problem.bounded[i]] * (v[problem.bounded[i]] - problem.upper[i]) > 0;
+    if (!solved_tight && (result.residual <= options.tol || next == active || seen.count(next))) {
+      // Settled, or cycling, at a loose solve: the same active set again at the final rule.
+      tight = true;
+      seen.clear();
+      if (k >= options.max_iterations) {
+        result.status = Status::MaxIterations;
+        result.message =
+            "stopped after " + std::to_string(k) + " active-set steps with residual " + number_text(result.residual);
+        break;
+      }
+      continue;
+    }
     if (result.residual <= options.tol) {
       result.status = Status::Converged;
       break;
     }
-    std::vector<char> next(m, 0);
-    for (int i = 0; i < m; ++i)
-      next[i] = mu[i] + diagonal[problem.bounded[i]] * (v[problem.bounded[i]] - problem.upper[i]) > 0;
     if (next == active) {
       result.status = Status::NumericalError;
       result.message = "the active set settled with residual " + number_text(result.residual) +
@@ -439,18 +443,20 @@ void solve_tao(Work& work, const BoundQp& problem, const BoundQpOptions& options
 
 bool petsc_bound_qp_available() { return true; }
 
-BoundQpResult solve_bound_qp_petsc(const BoundQp& problem, const BoundQpOptions& options) {
+BoundQpResult solve_bound_qp_petsc(BoundQp problem, const BoundQpOptions& options) {
   if (options.method != "pdas" && options.method != "tao")
     throw InputError("method", "= \"" + options.method + "\": not a method of the petsc backend; valid: pdas, tao");
   BoundQpResult result;
   bool options_error = false;
+  const int n = static_cast<int>(problem.A.rows());
   {
     std::lock_guard<std::mutex> lock(petsc_mutex());
     PetscRuntime& runtime = PetscRuntime::instance(options.petsc_options);
     runtime.use_options(options.petsc_options);
     const long generation = runtime.generation();
     Work work;
-    work.n = static_cast<int>(problem.A.rows());
+    work.n = n;
+    work.order = RowOrder(problem.distributed_row);
     std::string failure;
     Stopwatch clock;
     try {
@@ -458,6 +464,7 @@ BoundQpResult solve_bound_qp_petsc(const BoundQp& problem, const BoundQpOptions&
     } catch (const PetscFailure& error) {
       failure = error.message;
     }
+    problem.A = Eigen::SparseMatrix<double>();  // PETSc has its own copy
     result.setup_seconds = clock.seconds();
     if (!any_rank_failed(failure)) {
       clock.restart();
@@ -487,7 +494,7 @@ BoundQpResult solve_bound_qp_petsc(const BoundQp& problem, const BoundQpOptions&
         result.warnings.push_back("PETSc option " + option + " was not used (PETSc's -options_left)");
   }
   if (options_error) throw InputError("petsc_options", "= \"" + options.petsc_options + "\": " + result.message);
-  if (result.v.size() != problem.A.rows()) result.v = Eigen::VectorXd::Zero(problem.A.rows());
+  if (result.v.size() != n) result.v = Eigen::VectorXd::Zero(n);
   if (result.mu.size() != static_cast<Eigen::Index>(problem.bounded.size()))
     result.mu = Eigen::VectorXd::Zero(problem.bounded.size());
   return result;

@@ -18,11 +18,13 @@
 namespace contactqp::detail {
 
 struct BoundQp {
-  Eigen::SparseMatrix<double> A;    // n × n, symmetric positive definite, both triangles stored
-  Eigen::VectorXd b;                // n
-  std::vector<int> bounded;         // the components with an upper bound, increasing
-  Eigen::VectorXd upper;            // one bound per entry of `bounded`
-  Eigen::MatrixXd near_null_space;  // n × k (rigid-body modes in these variables), or empty
+  Eigen::SparseMatrix<double> A;     // n × n, symmetric positive definite, both triangles stored
+  Eigen::VectorXd b;                 // n
+  std::vector<int> bounded;          // the components with an upper bound, increasing
+  Eigen::VectorXd upper;             // one bound per entry of `bounded`
+  Eigen::MatrixXd near_null_space;   // n × k (rigid-body modes in these variables), or empty
+  bool A_is_rank_share = false;      // A is this rank's share: the ranks' shares sum to A (qp.hpp)
+  std::vector<int> distributed_row;  // the row of each variable in PETSc's matrix, or empty (qp.hpp)
 };
 
 struct BoundQpOptions {
@@ -33,6 +35,9 @@ struct BoundQpOptions {
   double tol = 1e-8;
   int max_iterations = 10000;
   std::string petsc_options;
+  // pdas: inexact steps (looser KSP solves while the active set still changes, the final
+  // steps at the inner rule); false solves every step at the inner rule.
+  bool inexact = true;
   bool verbose = false;
   // The relative KKT residual of an iterate in the caller's terms (v and μ on every rank):
   // the loop stops when it is ≤ tol. Stationarity holds to the inner tolerance by construction.
@@ -62,7 +67,9 @@ struct BoundQpResult {
 
 bool petsc_bound_qp_available();
 // Never throws on a numerical failure (status and message say it); InputError for bad PETSc
-// options or an unknown method. Collective: every rank calls it with the same problem.
-BoundQpResult solve_bound_qp_petsc(const BoundQp& problem, const BoundQpOptions& options);
+// options or an unknown method. Collective: every rank calls it with the same problem (or its
+// share of A). Takes the problem by value and frees its Eigen A once PETSc holds the matrix:
+// at 1e6 DOFs that copy is a gigabyte the iteration does not need.
+BoundQpResult solve_bound_qp_petsc(BoundQp problem, const BoundQpOptions& options);
 
 }  // namespace contactqp::detail

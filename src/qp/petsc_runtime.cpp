@@ -66,6 +66,14 @@ int mpi_size() {
   return size;
 }
 
+void mpi_sum(double* values, long n) {
+  // In pieces, since MPI counts are int.
+  constexpr long kPiece = 1L << 28;
+  for (long start = 0; start < n; start += kPiece)
+    MPI_Allreduce(MPI_IN_PLACE, values + start, static_cast<int>(std::min(kPiece, n - start)), MPI_DOUBLE, MPI_SUM,
+                  MPI_COMM_WORLD);
+}
+
 int mpi_agree_on_exit(int status, const std::string& error_line, double timeout_seconds) {
   const int rank = mpi_rank();
   // The largest status, and the lowest rank with a line (the largest −rank).

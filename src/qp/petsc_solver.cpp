@@ -8,6 +8,7 @@
 // exit status 2 included, ends PETSc and MPI in order.
 #include "petsc_solver.hpp"
 
+#include "petsc_matrix.hpp"
 #include "petsc_runtime.hpp"
 
 #include <petscksp.h>
@@ -71,6 +72,7 @@ struct PetscSolver::Impl {
   void* default_test = nullptr;  // KSPConvergedDefault's context: the user's -ksp_rtol etc.
   int n = 0;
   PetscInt first_row = 0, end_row = 0;  // the rows this rank owns
+  RowOrder order;                       // the unknowns' rows in A
   double tol = 1e-8;
   double target = 0;  // the absolute residual the current solve stops at
   double A_norm = 0;  // ‖A‖∞, for the round-off floor
@@ -134,39 +136,17 @@ struct PetscSolver::Impl {
 
 bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const LinearSolverOptions& settings) {
   PetscErrorCode code = 0;
-  // Rows are distributed by PETSc (PETSC_DECIDE) and each rank sets only the rows it owns, from
-  // its own copy of K for now; with a distributed assembly each rank will pass just its rows.
-  PetscInt local_rows = PETSC_DECIDE, global_rows = n;
-  if ((code = PetscSplitOwnership(PETSC_COMM_WORLD, &local_rows, &global_rows)))
-    return fail("PetscSplitOwnership", code);
-  MPI_Scan(&local_rows, &end_row, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
-  first_row = end_row - local_rows;
+  // Rows are distributed by PETSc (PETSC_DECIDE); each rank sets the rows it owns from its copy
+  // of K, or adds its share of K (settings.rank_share) wherever it lands.
+  if ((code = owned_rows(n, &first_row, &end_row))) return fail("PetscSplitOwnership", code);
+  const PetscInt local_rows = end_row - first_row;
   if ((code = MatCreate(PETSC_COMM_WORLD, &A))) return fail("MatCreate", code);
   if ((code = MatSetSizes(A, local_rows, local_rows, n, n))) return fail("MatSetSizes", code);
   if ((code = MatSetType(A, MATMPIAIJ))) return fail("MatSetType", code);
   if ((code = MatSetFromOptions(A))) return bad_options("MatSetFromOptions", code);
-  // K is symmetric with both triangles stored: column j of the column-major K is row j.
-  std::vector<PetscInt> diagonal_block(end_row - first_row, 0), off_diagonal_block(end_row - first_row, 0);
-  for (PetscInt row = first_row; row < end_row; ++row)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(K, static_cast<int>(row)); it; ++it)
-      ++(it.row() >= first_row && it.row() < end_row ? diagonal_block : off_diagonal_block)[row - first_row];
-  MatMPIAIJSetPreallocation(A, 0, diagonal_block.data(), 0, off_diagonal_block.data());
-  MatSeqAIJSetPreallocation(A, 0, diagonal_block.data());  // when -mat_type seqaij was asked for
-  std::vector<PetscInt> columns;
-  std::vector<PetscScalar> values;
-  for (PetscInt row = first_row; row < end_row; ++row) {
-    columns.clear();
-    values.clear();
-    for (Eigen::SparseMatrix<double>::InnerIterator it(K, static_cast<int>(row)); it; ++it) {
-      columns.push_back(it.row());
-      values.push_back(it.value());
-    }
-    if ((code = MatSetValues(A, 1, &row, static_cast<PetscInt>(columns.size()), columns.data(), values.data(),
-                             INSERT_VALUES)))
-      return fail("MatSetValues", code);
-  }
-  if ((code = MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY)) || (code = MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY)))
-    return fail("MatAssembly", code);
+  const char* step = "";
+  order = RowOrder(settings.distributed_row);
+  if ((code = fill_matrix(A, K, settings.rank_share, order, first_row, end_row, &step))) return fail(step, code);
   MatNorm(A, NORM_INFINITY, &A_norm);
   MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE);
   MatSetOption(A, MAT_SPD, PETSC_TRUE);
@@ -181,7 +161,7 @@ bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const Linea
       MatCreateVecs(A, &vectors[k], nullptr);
       PetscScalar* local = nullptr;
       VecGetArray(vectors[k], &local);
-      for (PetscInt row = first_row; row < end_row; ++row) local[row - first_row] = Q(row, k);
+      order.to_local(Q.col(k), first_row, end_row, local);
       VecRestoreArray(vectors[k], &local);
     }
     MatNullSpace space = nullptr;
@@ -276,10 +256,10 @@ Eigen::VectorXd PetscSolver::solve(const Eigen::VectorXd& rhs, const Eigen::Vect
   PetscRuntime::instance(m.options).use_options(m.options);
   PetscScalar* local = nullptr;
   VecGetArray(m.b, &local);
-  for (PetscInt row = m.first_row; row < m.end_row; ++row) local[row - m.first_row] = rhs[row];
+  m.order.to_local(rhs, m.first_row, m.end_row, local);
   VecRestoreArray(m.b, &local);
   VecGetArray(m.x, &local);
-  for (PetscInt row = m.first_row; row < m.end_row; ++row) local[row - m.first_row] = warm ? scale_ * guess[row] : 0.0;
+  m.order.to_local(warm ? Eigen::VectorXd(scale_ * guess) : Eigen::VectorXd::Zero(m.n), m.first_row, m.end_row, local);
   VecRestoreArray(m.x, &local);
   KSPSetInitialGuessNonzero(m.ksp, warm ? PETSC_TRUE : PETSC_FALSE);
   m.target = kInnerFraction * m.tol * bound;
@@ -317,7 +297,7 @@ Eigen::VectorXd PetscSolver::solve(const Eigen::VectorXd& rhs, const Eigen::Vect
   VecScatterEnd(m.to_all, m.x, m.x_all, INSERT_VALUES, SCATTER_FORWARD);
   const PetscScalar* all = nullptr;
   VecGetArrayRead(m.x_all, &all);
-  Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(all, m.n) / scale_;
+  Eigen::VectorXd out = m.order.to_dofs(all, m.n) / scale_;
   VecRestoreArrayRead(m.x_all, &all);
   if (!out.allFinite()) {
     if (m.ok) {

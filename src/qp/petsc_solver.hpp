@@ -23,6 +23,7 @@ namespace contactqp::detail {
 // MPI as PETSc started it: -1 (rank) and 0 (size) while MPI does not run or is finalised.
 int mpi_rank();
 int mpi_size();
+void mpi_sum(double* values, long n);  // MPI_Allreduce in place on MPI_COMM_WORLD
 // agree_on_exit() (processes.hpp) on MPI_COMM_WORLD.
 int mpi_agree_on_exit(int status, const std::string& error_line, double timeout_seconds);
 

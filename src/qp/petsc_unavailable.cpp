@@ -1,6 +1,7 @@
 // Built instead of petsc_solver.cpp when PETSc is absent: the petsc linear solver reports
 // itself unavailable, and make_linear_solver() refuses it as bad input before any work.
 #include "contactqp/errors.hpp"
+#include "contactqp/processes.hpp"
 #include "petsc_bound_qp.hpp"
 #include "petsc_solver.hpp"
 
@@ -20,11 +21,20 @@ namespace contactqp::detail {
 
 int mpi_rank() { return -1; }
 int mpi_size() { return 0; }
+void mpi_sum(double*, long) {}                                                    // never called: size 0
 int mpi_agree_on_exit(int status, const std::string&, double) { return status; }  // never called: size 0
 
 bool petsc_bound_qp_available() { return false; }
-BoundQpResult solve_bound_qp_petsc(const BoundQp&, const BoundQpOptions&) {
+BoundQpResult solve_bound_qp_petsc(BoundQp, const BoundQpOptions&) {
   throw InputError("backend", "= \"petsc\": PETSc was not built into this copy of contactqp");
 }
 
 }  // namespace contactqp::detail
+
+namespace contactqp {
+
+std::vector<int> partition_graph(const std::vector<long>& offsets, const std::vector<int>&, int, const std::string&) {
+  return std::vector<int>(offsets.empty() ? 0 : offsets.size() - 1, 0);  // one process: one part
+}
+
+}  // namespace contactqp

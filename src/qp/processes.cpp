@@ -38,6 +38,10 @@ int process_count() {
   return launched >= 1 ? launched : 1;
 }
 
+void sum_over_ranks(double* values, long n) {
+  if (detail::mpi_size() > 1) detail::mpi_sum(values, n);
+}
+
 int agree_on_exit(int status, const std::string& error_line, double timeout_seconds) {
   if (detail::mpi_size() > 1) return detail::mpi_agree_on_exit(status, error_line, timeout_seconds);
   // No MPI between the processes (a failure before PETSc started, the same on every rank):

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "contactqp/errors.hpp"
+#include "contactqp/processes.hpp"
 
 namespace contactqp {
 namespace {
@@ -83,6 +84,14 @@ void validate(const QuadraticProgram& qp) {
   if (!qp.g.allFinite()) throw InputError("qp.g", "has an entry that is not finite");
 }
 
-double primal_objective(const QuadraticProgram& qp, const VectorXd& u) { return 0.5 * u.dot(qp.K * u) - qp.f.dot(u); }
+VectorXd K_times(const QuadraticProgram& qp, const VectorXd& u) {
+  VectorXd Ku = qp.K * u;
+  if (qp.K_is_rank_share) sum_over_ranks(Ku.data(), Ku.size());
+  return Ku;
+}
+
+double primal_objective(const QuadraticProgram& qp, const VectorXd& u) {
+  return 0.5 * u.dot(K_times(qp, u)) - qp.f.dot(u);
+}
 
 }  // namespace contactqp

@@ -3,6 +3,8 @@
 
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
+#include "contactqp/linear_solver.hpp"
+#include "contactqp/processes.hpp"
 #include "contactqp/run.hpp"
 #include "contactqp/solve.hpp"
 
@@ -18,7 +20,14 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   phase("mesh");
   auto model = std::make_shared<Model>(build_model(scene, options.build));
   phase("assemble");
-  auto qp = std::make_shared<QuadraticProgram>(assemble_qp(*model));
+  // Under mpirun the petsc backend takes K in shares: each rank assembles its own elements
+  // (docs/petsc.md), so no rank holds the whole K. Every other solve needs K whole.
+  RankShare share;
+  if (scene.solver.backend == Backend::Petsc && !options.no_contact && process_count() > 1) {
+    start_petsc_runtime(scene.solver.petsc_options);  // MPI, with the user's options on PETSc's command line
+    share = RankShare{process_rank(), process_count()};
+  }
+  auto qp = std::make_shared<QuadraticProgram>(assemble_qp(*model, share));
 
   RunReport report;
   report.model = model;

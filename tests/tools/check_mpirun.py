@@ -2,9 +2,12 @@
 """ctest entry for `mpirun -n 2 contactqp solve SCENE --backend petsc` (docs/petsc.md): the run
 converges, prints its summary once and writes its files once; u and the contact forces agree
 with active_set (u <= 1e-6, lambda <= 1e-5, relative 2-norms) and with the same run on one
-rank (1e-8); bad input under mpirun ends both ranks with exit status 2 and one line.
+rank (1e-8); on 2 ranks each rank assembled its own elements (K split in shares, rank 0's at
+most 0.6 of the whole) and the certificate's duality gap is still measured; bad input under
+mpirun ends both ranks with exit status 2 and one line.
 
 usage: check_mpirun.py CONTACTQP MPIEXEC SCENE WORKDIR"""
+import json
 import os
 import subprocess
 import sys
@@ -43,13 +46,14 @@ def main(cli, mpiexec, scene, workdir):
             failures.append(text)
 
     paths = {name: os.path.join(workdir, name + ".vtu") for name in ("active_set", "petsc1", "petsc2")}
-    json2 = os.path.join(workdir, "petsc2.json")
-    for path in list(paths.values()) + [json2]:
+    json1, json2 = os.path.join(workdir, "petsc1.json"), os.path.join(workdir, "petsc2.json")
+    for path in list(paths.values()) + [json1, json2]:
         if os.path.exists(path):
             os.remove(path)
     code, out, err = run([cli, "solve", scene, "--backend", "active_set", "--tol", "1e-10", "--vtu", paths["active_set"]], env)
     check(code == 0, "active_set converged (exit %d) %s" % (code, err.strip()))
-    code, out, err = run([cli, "solve", scene, "--backend", "petsc", "--tol", "1e-10", "--vtu", paths["petsc1"]], env)
+    code, out, err = run([cli, "solve", scene, "--backend", "petsc", "--tol", "1e-10", "--vtu", paths["petsc1"],
+                          "--json", json1], env)
     check(code == 0, "petsc on 1 rank converged (exit %d) %s" % (code, err.strip()))
     code, out, err = run(mpi + [cli, "solve", scene, "--backend", "petsc", "--tol", "1e-10", "--vtu", paths["petsc2"],
                                "--json", json2], env)
@@ -57,6 +61,20 @@ def main(cli, mpiexec, scene, workdir):
     check(out.count("certificate ") == 1, "the summary is printed once (%d times)" % out.count("certificate "))
     leftovers = [name for name in os.listdir(workdir) if ".tmp" in name or name.startswith(".")]
     check(not leftovers, "no temporary files left: %s" % leftovers)
+    if os.path.exists(json1) and os.path.exists(json2):
+        with open(json1) as one, open(json2) as two:
+            result1, result2 = json.load(one), json.load(two)
+        whole = result1["solver"]["k_nonzeros_this_rank"]
+        share = result2["solver"]["k_nonzeros_this_rank"]
+        print("K nonzeros: %d on 1 rank, %d on rank 0 of 2" % (whole, share))
+        check(result1["solver"]["k_rank_share"] == 0, "1 rank assembles the whole K")
+        check(result2["solver"]["k_rank_share"] == 1, "2 ranks assemble K in shares")
+        check(share <= 0.6 * whole, "rank 0's share of K is at most 0.6 of the whole")
+        gap1, gap2 = result1["relative_duality_gap"], result2["relative_duality_gap"]
+        check(result2["dual_objective"] != 0 and abs(gap2) <= 1e-8,
+              "the duality gap is measured on 2 ranks (%.2e, 1 rank %.2e)" % (gap2, gap1))
+        check(abs(result2["objective"] - result1["objective"]) <= 1e-10 * abs(result1["objective"]),
+              "J on 1 and 2 ranks agree to 1e-10")
     if all(os.path.exists(p) for p in paths.values()):
         u_a, l_a = read(paths["active_set"])
         u_1, l_1 = read(paths["petsc1"])

@@ -1,0 +1,86 @@
+// distributed_rows() and owned_elements() (rank_share.hpp).
+#include "rank_share.hpp"
+
+#include <algorithm>
+
+#include "contactqp/mesh.hpp"
+#include "contactqp/processes.hpp"
+
+namespace contactqp::detail {
+namespace {
+
+// The rank whose block of rows holds `row`: PETSc's split of n rows into `ranks` contiguous
+// blocks, the first n % ranks of them one row longer (PetscSplitOwnership).
+int owner_of_row(int row, int n, int ranks) {
+  const int q = n / ranks, r = n % ranks;
+  return row < r * (q + 1) ? row / (q + 1) : r + (row - r * (q + 1)) / q;
+}
+
+// The mesh's nodes and, for each, the nodes it shares an element with (itself included).
+void node_graph(const Mesh& mesh, std::vector<long>& offsets, std::vector<int>& neighbours) {
+  const int npe = mesh.nodes_per_element(), n_nodes = mesh.n_nodes();
+  std::vector<long> first(n_nodes + 1, 0);
+  for (int node : mesh.elements) ++first[node + 1];
+  for (int v = 0; v < n_nodes; ++v) first[v + 1] += first[v];
+  std::vector<int> element_at(first.back());
+  std::vector<long> next(first.begin(), first.end() - 1);
+  for (int e = 0; e < mesh.n_elements(); ++e)
+    for (int k = 0; k < npe; ++k) element_at[next[mesh.element(e)[k]]++] = e;
+  offsets.assign(1, 0);
+  neighbours.clear();
+  std::vector<int> around;
+  for (int v = 0; v < n_nodes; ++v) {
+    around.clear();
+    for (long k = first[v]; k < first[v + 1]; ++k) {
+      const int* nodes = mesh.element(element_at[k]);
+      around.insert(around.end(), nodes, nodes + npe);
+    }
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    neighbours.insert(neighbours.end(), around.begin(), around.end());
+    offsets.push_back(static_cast<long>(neighbours.size()));
+  }
+}
+
+}  // namespace
+
+std::vector<int> distributed_rows(const Model& model, int ranks) {
+  std::vector<long> offsets;
+  std::vector<int> neighbours;
+  node_graph(model.mesh, offsets, neighbours);
+  const std::vector<int> part = partition_graph(offsets, neighbours, ranks);
+  if (part.empty()) return {};
+  const int dim = model.dim;
+  // Counting sort of the free DOFs by the part of their node, stable within a part.
+  std::vector<int> start(ranks + 1, 0);
+  for (std::size_t dof = 0; dof < model.free_index.size(); ++dof)
+    if (model.free_index[dof] >= 0) ++start[part[dof / dim] + 1];
+  for (int p = 0; p < ranks; ++p) start[p + 1] += start[p];
+  std::vector<int> row(model.n_free);
+  for (std::size_t dof = 0; dof < model.free_index.size(); ++dof)
+    if (model.free_index[dof] >= 0) row[model.free_index[dof]] = start[part[dof / dim]]++;
+  return row;
+}
+
+std::vector<char> owned_elements(const Model& model, const RankShare& share, const std::vector<int>& distributed_row) {
+  const Mesh& mesh = model.mesh;
+  const int npe = mesh.nodes_per_element(), dim = mesh.dim;
+  std::vector<char> owned(mesh.n_elements(), 1);
+  if (share.ranks <= 1) return owned;
+  for (int e = 0; e < mesh.n_elements(); ++e) {
+    // The row of the element's first free DOF, in node order: an element on the boundary
+    // between two ranks' rows goes to either side alike (the lowest row would give them all to
+    // the lower rank).
+    int first = -1;
+    const int* v = mesh.element(e);
+    for (int i = 0; i < npe && first < 0; ++i)
+      for (int c = 0; c < dim && first < 0; ++c) {
+        const int free = model.free_index[dim * v[i] + c];
+        if (free >= 0) first = distributed_row.empty() ? free : distributed_row[free];
+      }
+    owned[e] = first >= 0 && owner_of_row(first, model.n_free, share.ranks) == share.rank;
+  }
+  return owned;
+}
+
+}  // namespace contactqp::detail

@@ -1,0 +1,24 @@
+// Under mpirun with the petsc backend, which elements each rank assembles (model.hpp's
+// RankShare, docs/petsc.md): the mesh's nodes are partitioned (PT-Scotch through PETSc), the
+// DOFs of each part get consecutive rows of the distributed matrix, and a rank assembles the
+// elements whose first free DOF's row lies in its block of rows (PETSc's split into contiguous
+// blocks), so that what it adds is mostly its own rows.
+#pragma once
+
+#include <vector>
+
+#include "contactqp/model.hpp"
+
+namespace contactqp::detail {
+
+// The row of each free DOF in the distributed matrix: the DOFs of part 0 of a partition of the
+// mesh's node graph into `ranks` parts first, in their own order, then part 1's, ... The same
+// on every rank. Collective. Empty when the partition failed.
+std::vector<int> distributed_rows(const Model& model, int ranks);
+
+// 1 for each element this rank adds to K: all of them for one rank; else those whose first
+// free DOF's row (distributed_row, or the DOF itself when empty) is in the rank's block. An
+// element without free DOFs adds nothing anywhere.
+std::vector<char> owned_elements(const Model& model, const RankShare& share, const std::vector<int>& distributed_row);
+
+}  // namespace contactqp::detail

@@ -1,0 +1,78 @@
+// partition_graph() (processes.hpp): PETSc's MatPartitioning, PT-Scotch by default (Debian's
+// PETSc is built with it; ParMETIS is not in Debian's main archive).
+#include <petscmat.h>
+
+#include <algorithm>
+#include <mutex>
+
+#include "contactqp/processes.hpp"
+#include "petsc_runtime.hpp"
+#include "petsc_solver.hpp"
+
+namespace contactqp {
+namespace {
+
+struct PartitionFailure {
+  std::string what;
+  PetscErrorCode code;
+};
+
+void check(PetscErrorCode code, const char* what) {
+  if (code) throw PartitionFailure{what, code};
+}
+
+}  // namespace
+
+std::vector<int> partition_graph(const std::vector<long>& offsets, const std::vector<int>& neighbours, int parts,
+                                 const std::string& petsc_options) {
+  const int n = static_cast<int>(offsets.size()) - 1;
+  std::vector<int> part(std::max(n, 0), 0);
+  if (parts <= 1 || n <= 0) return part;
+  detail::start_petsc_runtime(petsc_options);
+  std::lock_guard<std::mutex> lock(detail::petsc_mutex());
+  Mat adjacency = nullptr;
+  MatPartitioning partitioning = nullptr;
+  IS mine = nullptr, all = nullptr;
+  try {
+    // This rank's block of vertices, each with its neighbours but itself (MATMPIADJ takes the
+    // arrays, allocated by PETSc).
+    PetscInt local = PETSC_DECIDE, global = n, end = 0;
+    check(PetscSplitOwnership(PETSC_COMM_WORLD, &local, &global), "PetscSplitOwnership");
+    MPI_Scan(&local, &end, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
+    const PetscInt first = end - local;
+    PetscInt *ia = nullptr, *ja = nullptr;
+    long edges = 0;
+    for (PetscInt v = first; v < end; ++v)
+      for (long k = offsets[v]; k < offsets[v + 1]; ++k) edges += neighbours[k] != v;
+    check(PetscMalloc1(local + 1, &ia), "PetscMalloc1");
+    check(PetscMalloc1(std::max(edges, 1L), &ja), "PetscMalloc1");
+    ia[0] = 0;
+    for (PetscInt v = first; v < end; ++v) {
+      PetscInt count = ia[v - first];
+      for (long k = offsets[v]; k < offsets[v + 1]; ++k)
+        if (neighbours[k] != v) ja[count++] = neighbours[k];
+      ia[v - first + 1] = count;
+    }
+    check(MatCreateMPIAdj(PETSC_COMM_WORLD, local, n, ia, ja, nullptr, &adjacency), "MatCreateMPIAdj");
+    check(MatPartitioningCreate(PETSC_COMM_WORLD, &partitioning), "MatPartitioningCreate");
+    check(MatPartitioningSetAdjacency(partitioning, adjacency), "MatPartitioningSetAdjacency");
+    check(MatPartitioningSetNParts(partitioning, parts), "MatPartitioningSetNParts");
+    check(MatPartitioningSetType(partitioning, MATPARTITIONINGPTSCOTCH), "MatPartitioningSetType");
+    check(MatPartitioningSetFromOptions(partitioning), "MatPartitioningSetFromOptions");
+    check(MatPartitioningApply(partitioning, &mine), "MatPartitioningApply");
+    check(ISAllGather(mine, &all), "ISAllGather");
+    const PetscInt* indices = nullptr;
+    check(ISGetIndices(all, &indices), "ISGetIndices");
+    for (int v = 0; v < n; ++v) part[v] = static_cast<int>(indices[v]);
+    ISRestoreIndices(all, &indices);
+  } catch (const PartitionFailure&) {
+    part.clear();  // the caller goes on without a partition (and says so)
+  }
+  if (all) ISDestroy(&all);
+  if (mine) ISDestroy(&mine);
+  if (partitioning) MatPartitioningDestroy(&partitioning);
+  if (adjacency) MatDestroy(&adjacency);
+  return part;
+}
+
+}  // namespace contactqp
