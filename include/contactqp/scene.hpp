@@ -76,25 +76,52 @@ struct BodySpec {
   MeshSpec mesh;                                        // generated shapes; for a .geo file only order and size_factor
 };
 
-struct LoadSpec {
-  // "displacement": prescribed displacement of a named boundary;
-  // "traction": a force per area on a named boundary; "pressure": a normal pressure on it;
-  // "gravity": density × g on the body (or a region); "point": a force at the node nearest a point.
-  std::string type;
-  std::string path;      // the load's field path in the scene ("load", "load[2]"), for messages
-  std::string boundary;  // displacement, traction, pressure: a boundary name
-  // displacement: prescribed components (length), dim of them; an absent component (JSON null) is left free.
+// The loads, one type per kind. Vectors have dim components, z = 0 in 2D.
+struct DisplacementLoad {  // a prescribed displacement of a named boundary
+  std::string boundary;
+  // Prescribed components (length), dim of them; an absent component (JSON null) is left free.
   std::optional<double> value[3];
-  // traction: force per area; gravity: the acceleration g; point: the force (for the thickness).
-  // dim components, z = 0 in 2D.
-  Eigen::Vector3d vector = Eigen::Vector3d::Zero();
-  double pressure = 0;                // pressure: force per area, positive pushes into the body
-  double density = 0;                 // gravity: mass per volume, > 0
-  std::string region;                 // gravity: a named region of a mesh body; "" for the whole body
-  std::optional<Eigen::Vector3d> at;  // point: the location (the nearest node takes the force)
-  std::string point;                  // point: a named physical point of a mesh body instead of `at`
+};
+struct TractionLoad {  // a force per area on a named boundary
+  std::string boundary;
+  Eigen::Vector3d traction = Eigen::Vector3d::Zero();
+};
+struct PressureLoad {  // a normal pressure on a named boundary
+  std::string boundary;
+  double pressure = 0;  // force per area, positive pushes into the body
+};
+struct GravityLoad {   // density × g on the body, or on a region of a mesh body
+  double density = 0;  // mass per volume, > 0
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  std::string region;  // a named region of a mesh body; "" for the whole body
+};
+struct PointLoad {                    // a force (for the thickness) at the node nearest a point
+  std::optional<Eigen::Vector3d> at;  // the location (the nearest node takes the force)
+  std::string point;                  // a named physical point of a mesh body instead of `at`
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+};
 
-  bool is_force() const { return type != "displacement"; }
+struct LoadSpec {
+  std::string path;  // the load's field path in the scene ("load", "load[2]"), for messages
+  std::variant<DisplacementLoad, TractionLoad, PressureLoad, GravityLoad, PointLoad> kind;
+
+  std::string type() const;  // "displacement", "traction", "pressure", "gravity", "point"
+  template <class Kind>
+  const Kind* as() const {
+    return std::get_if<Kind>(&kind);
+  }
+  template <class Kind>
+  Kind* as() {
+    return std::get_if<Kind>(&kind);
+  }
+  template <class Kind>
+  bool is() const {
+    return std::holds_alternative<Kind>(kind);
+  }
+  bool is_force() const { return !is<DisplacementLoad>(); }
+  // The boundary a displacement, traction or pressure acts on; nullptr for gravity and a point force.
+  const std::string* boundary() const;
+  std::string* boundary();
 };
 
 // The rigid obstacles, one type per kind. Points and directions have z = 0 in 2D. Every

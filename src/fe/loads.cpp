@@ -50,8 +50,8 @@ void add_face_loads(const Mesh& mesh, const std::string& boundary, Traction trac
   }
 }
 
-void add_gravity(const Mesh& mesh, const LoadSpec& load, double thickness, Eigen::VectorXd& f) {
-  const Eigen::Vector3d b = load.density * load.vector;  // force per volume
+void add_gravity(const Mesh& mesh, const GravityLoad& load, double thickness, Eigen::VectorXd& f) {
+  const Eigen::Vector3d b = load.density * load.g;  // force per volume
   std::vector<int> elements;
   if (load.region.empty()) {
     for (int e = 0; e < mesh.n_elements(); ++e) elements.push_back(e);
@@ -102,22 +102,22 @@ std::vector<int> point_load_nodes(const Scene& scene, const Mesh& mesh, std::vec
   double extent = 0;
   for (const Eigen::Vector3d& x : mesh.nodes) extent = std::max(extent, (x - mesh.nodes[0]).norm());
   for (size_t l = 0; l < scene.loads.size(); ++l) {
-    const LoadSpec& load = scene.loads[l];
-    if (load.type != "point") continue;
-    if (!load.point.empty()) {
-      nodes[l] = mesh.points.at(load.point).front();
+    const PointLoad* point = scene.loads[l].as<PointLoad>();
+    if (!point) continue;
+    if (!point->point.empty()) {
+      nodes[l] = mesh.points.at(point->point).front();
       continue;
     }
     double best = std::numeric_limits<double>::infinity();
     for (int node = 0; node < mesh.n_nodes(); ++node) {
-      const double distance = (mesh.nodes[node] - *load.at).norm();
+      const double distance = (mesh.nodes[node] - *point->at).norm();
       if (distance < best) {
         best = distance;
         nodes[l] = node;
       }
     }
     if (best > 1e-9 * extent)
-      warnings.push_back(load.path + " acts at node " + std::to_string(nodes[l]) + " at " +
+      warnings.push_back(scene.loads[l].path + " acts at node " + std::to_string(nodes[l]) + " at " +
                          format_point(mesh.nodes[nodes[l]], mesh.dim) + ", " + format_value(best) +
                          " from the point asked for (the nearest node)");
   }
@@ -136,31 +136,30 @@ Eigen::VectorXd nodal_forces(const Scene& scene, const Mesh& mesh, const std::ve
       for (int node : boundary_nodes(mesh, plane)) ++planes_of_node[node];
   for (size_t l = 0; l < scene.loads.size(); ++l) {
     const LoadSpec& load = scene.loads[l];
-    if (load.type == "traction") {
+    if (const auto* traction = load.as<TractionLoad>()) {
+      const Eigen::Vector3d& t = traction->traction;
       if (dim == 2)
         add_edge_loads(
-            mesh, load.boundary, thickness,
-            [&](const Eigen::Vector2d& dx) { return Eigen::Vector2d(dx.norm() * load.vector.head<2>()); }, f);
+            mesh, traction->boundary, thickness,
+            [&](const Eigen::Vector2d& dx) { return Eigen::Vector2d(dx.norm() * t.head<2>()); }, f);
       else
         add_face_loads(
-            mesh, load.boundary, [&](const Eigen::Vector3d& a) { return Eigen::Vector3d(a.norm() * load.vector); }, f);
-    } else if (load.type == "pressure") {
+            mesh, traction->boundary, [&](const Eigen::Vector3d& a) { return Eigen::Vector3d(a.norm() * t); }, f);
+    } else if (const auto* pressure = load.as<PressureLoad>()) {
       // t = −p n_out; in 2D n_out |dx| = (dx_y, −dx_x), in 3D n_out |a| = a.
+      const double p = pressure->pressure;
       if (dim == 2)
         add_edge_loads(
-            mesh, load.boundary, thickness,
-            [&](const Eigen::Vector2d& dx) {
-              return Eigen::Vector2d(-load.pressure * Eigen::Vector2d(dx.y(), -dx.x()));
-            },
-            f);
+            mesh, pressure->boundary, thickness,
+            [&](const Eigen::Vector2d& dx) { return Eigen::Vector2d(-p * Eigen::Vector2d(dx.y(), -dx.x())); }, f);
       else
         add_face_loads(
-            mesh, load.boundary, [&](const Eigen::Vector3d& a) { return Eigen::Vector3d(-load.pressure * a); }, f);
-    } else if (load.type == "gravity") {
-      add_gravity(mesh, load, thickness, f);
-    } else if (load.type == "point") {
+            mesh, pressure->boundary, [&](const Eigen::Vector3d& a) { return Eigen::Vector3d(-p * a); }, f);
+    } else if (const auto* gravity = load.as<GravityLoad>()) {
+      add_gravity(mesh, *gravity, thickness, f);
+    } else if (const auto* point = load.as<PointLoad>()) {
       const double share = std::pow(0.5, planes_of_node[point_nodes[l]]);
-      f.segment(dim * point_nodes[l], dim) += share * load.vector.head(dim);
+      f.segment(dim * point_nodes[l], dim) += share * point->force.head(dim);
     }
   }
   return f;

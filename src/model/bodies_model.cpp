@@ -43,9 +43,10 @@ auto for_body(const SceneBody& body, const Step& step) {
 double largest_push(const std::vector<LoadSpec>& loads) {
   double largest = 0;
   for (const LoadSpec& load : loads) {
-    if (load.is_force()) return -1;
-    largest = std::max(
-        largest, std::hypot(load.value[0].value_or(0.0), load.value[1].value_or(0.0), load.value[2].value_or(0.0)));
+    const DisplacementLoad* d = load.as<DisplacementLoad>();
+    if (!d) return -1;
+    largest =
+        std::max(largest, std::hypot(d->value[0].value_or(0.0), d->value[1].value_or(0.0), d->value[2].value_or(0.0)));
   }
   return largest;
 }
@@ -270,7 +271,7 @@ Model build_bodies_model(const Scene& scene, const BuildOptions& options) {
     const int first_node = model.mesh.n_nodes();
     append(model, part, body, one);
     for (LoadSpec load : body.loads) {  // the scene's loads, named by the merged mesh's boundaries
-      if (!load.boundary.empty()) load.boundary = body.name + "." + load.boundary;
+      if (std::string* boundary = load.boundary()) *boundary = body.name + "." + *boundary;
       model.scene.loads.push_back(load);
     }
     for (const ObstacleContactSpec& entry : scene.obstacle_contacts) {

@@ -28,10 +28,11 @@ void apply_displacement_conditions(Model& model, const Scene& scene, const Eigen
   model.free_index.assign(dim * n_nodes, 0);
   model.prescribed = Eigen::VectorXd::Zero(dim * n_nodes);
   for (const LoadSpec& load : scene.loads) {
-    if (load.type != "displacement") continue;
-    for (int node : boundary_nodes(model.mesh, load.boundary))
+    const DisplacementLoad* d = load.as<DisplacementLoad>();
+    if (!d) continue;
+    for (int node : boundary_nodes(model.mesh, d->boundary))
       for (int c = 0; c < dim; ++c)
-        if (load.value[c]) prescribe(model, dim * node + c, *load.value[c], load.path + ".value");
+        if (d->value[c]) prescribe(model, dim * node + c, *d->value[c], load.path + ".value");
   }
   if (scene.body.symmetry)
     for (const std::string& plane : symmetry_boundaries(dim))

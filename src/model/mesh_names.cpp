@@ -32,10 +32,12 @@ void check_mesh_names(const Scene& scene, const Mesh& mesh) {
   const std::string boundary_group = solid ? "physical surface" : "physical curve";
   const std::string region_group = solid ? "physical volume" : "physical surface";
   for (const LoadSpec& load : scene.loads) {
-    if (!load.boundary.empty())
-      require_name(mesh.boundaries, load.boundary, load.path + ".boundary", boundary_group, file);
-    if (!load.region.empty()) require_name(mesh.regions, load.region, load.path + ".region", region_group, file);
-    if (!load.point.empty()) require_name(mesh.points, load.point, load.path + ".point", "physical point", file);
+    if (const std::string* boundary = load.boundary())
+      require_name(mesh.boundaries, *boundary, load.path + ".boundary", boundary_group, file);
+    if (const auto* gravity = load.as<GravityLoad>(); gravity && !gravity->region.empty())
+      require_name(mesh.regions, gravity->region, load.path + ".region", region_group, file);
+    if (const auto* point = load.as<PointLoad>(); point && !point->point.empty())
+      require_name(mesh.points, point->point, load.path + ".point", "physical point", file);
   }
   require_name(mesh.boundaries, scene.contact.boundary, "contact.boundary", boundary_group, file);
   if (!scene.body.symmetry) return;

@@ -35,8 +35,9 @@ void choose_max_gap(const Scene& scene, Model& model) {
   bool forces = false;
   for (const LoadSpec& load : scene.loads) {
     forces = forces || load.is_force();
-    if (load.type != "displacement") continue;
-    const double ux = load.value[0].value_or(0.0), uy = load.value[1].value_or(0.0), uz = load.value[2].value_or(0.0);
+    const DisplacementLoad* d = load.as<DisplacementLoad>();
+    if (!d) continue;
+    const double ux = d->value[0].value_or(0.0), uy = d->value[1].value_or(0.0), uz = d->value[2].value_or(0.0);
     largest = std::max(largest, uz == 0.0 ? std::hypot(ux, uy) : std::hypot(ux, uy, uz));
   }
   if (largest >= 0 && !forces) {

@@ -21,13 +21,14 @@ std::optional<double> approach(const Model& model, const Eigen::Vector3d& axis) 
   double highest = 0, lowest = 0;
   bool any = false;
   for (const LoadSpec& load : model.scene.loads) {
-    if (load.type != "displacement") continue;
+    const DisplacementLoad* d = load.as<DisplacementLoad>();
+    if (!d) continue;
     // Prescribed components are along the scene's own axes (turned by its transform).
     Eigen::Vector3d value = Eigen::Vector3d::Zero();
     bool along = false;
     for (int c = 0; c < 3; ++c) {
-      if (!load.value[c]) continue;
-      value[c] = *load.value[c];
+      if (!d->value[c]) continue;
+      value[c] = *d->value[c];
       along = along || std::abs(model.rotation.col(c).dot(axis)) > 1e-9;
     }
     if (!along) continue;

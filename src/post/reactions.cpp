@@ -40,9 +40,10 @@ std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, 
   }
   std::vector<Reaction> out;
   for (const LoadSpec& load : model.scene.loads) {
-    if (load.type != "displacement") continue;
-    Reaction reaction{load.path, load.boundary, Eigen::Vector3d::Zero()};
-    for (int node : boundary_nodes(mesh, load.boundary)) reaction.force.head(dim) += residual.segment(dim * node, dim);
+    const DisplacementLoad* d = load.as<DisplacementLoad>();
+    if (!d) continue;
+    Reaction reaction{load.path, d->boundary, Eigen::Vector3d::Zero()};
+    for (int node : boundary_nodes(mesh, d->boundary)) reaction.force.head(dim) += residual.segment(dim * node, dim);
     // With symmetry the mirrored parts push the same along the axis the cuts share and
     // cancel across it (2D: the scene's y, two halves; 3D: its z, four quarters).
     if (model.scene.body.symmetry) {

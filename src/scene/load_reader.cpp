@@ -1,6 +1,9 @@
 // One entry of the `load` section: prescribed displacement, traction, pressure, gravity, or
 // a point force.
 #include <algorithm>
+#include <type_traits>
+#include <utility>
+#include <variant>
 
 #include "contactqp/errors.hpp"
 #include "readers.hpp"
@@ -10,7 +13,9 @@ namespace {
 
 const std::vector<std::string> kLoadTypes = {"displacement", "traction", "pressure", "gravity", "point"};
 
-void read_displacement(JsonObject& load, LoadSpec& spec, int dim) {
+DisplacementLoad read_displacement(JsonObject& load, std::string boundary, int dim) {
+  DisplacementLoad spec;
+  spec.boundary = std::move(boundary);
   const nlohmann::json& value = load.value("value");
   const std::string path = load.path_of("value");
   if (!value.is_array() || static_cast<int>(value.size()) != dim)
@@ -26,10 +31,26 @@ void read_displacement(JsonObject& load, LoadSpec& spec, int dim) {
   if (!any)
     throw InputError(
         path, std::string(dim == 2 ? "= [null, null]" : "= [null, null, null]") + ": prescribe at least one component");
+  return spec;
 }
 
-void read_point(JsonObject& load, LoadSpec& spec, const BodySpec& body, int dim) {
-  spec.vector = read_vector(load.value("value"), load.path_of("value"), dim);
+GravityLoad read_gravity(JsonObject& load, const BodySpec& body, int dim) {
+  GravityLoad spec;
+  spec.density = load.number("density");
+  require(spec.density > 0, load.path_of("density"), spec.density, "must be positive");
+  spec.g = read_vector(load.value("g"), load.path_of("g"), dim);
+  if (auto region = load.optional_string("region")) {
+    spec.region = *region;
+    if (body.shape != "mesh")
+      throw InputError(load.path_of("region"), "= \"" + spec.region + "\": a " + body.shape +
+                                                   " has no named regions; leave \"region\" out for the whole body");
+  }
+  return spec;
+}
+
+PointLoad read_point(JsonObject& load, const BodySpec& body, int dim) {
+  PointLoad spec;
+  spec.force = read_vector(load.value("value"), load.path_of("value"), dim);
   const bool has_at = load.has("at"), has_point = load.has("point");
   if (has_at == has_point)
     throw InputError(load.path(), std::string(has_at ? "has both" : "needs one of") +
@@ -43,6 +64,7 @@ void read_point(JsonObject& load, LoadSpec& spec, const BodySpec& body, int dim)
                        "= \"" + spec.point + "\": a " + body.shape +
                            " has no named points; give \"at\": " + (dim == 2 ? "[x, y]" : "[x, y, z]") + " instead");
   }
+  return spec;
 }
 
 }  // namespace
@@ -50,34 +72,61 @@ void read_point(JsonObject& load, LoadSpec& spec, const BodySpec& body, int dim)
 LoadSpec read_load(JsonObject load, const BodySpec& body, int dim) {
   LoadSpec spec;
   spec.path = load.path();
-  spec.type = load.string("type");
-  if (std::find(kLoadTypes.begin(), kLoadTypes.end(), spec.type) == kLoadTypes.end())
-    unknown_choice(load.path_of("type"), spec.type, "load type", kLoadTypes);
-  if (spec.type == "displacement" || spec.type == "traction" || spec.type == "pressure") {
-    spec.boundary = load.string("boundary");
-    require_boundary(spec.boundary, body, load.path_of("boundary"));
+  const std::string type = load.string("type");
+  if (std::find(kLoadTypes.begin(), kLoadTypes.end(), type) == kLoadTypes.end())
+    unknown_choice(load.path_of("type"), type, "load type", kLoadTypes);
+  std::string boundary;
+  if (type == "displacement" || type == "traction" || type == "pressure") {
+    boundary = load.string("boundary");
+    require_boundary(boundary, body, load.path_of("boundary"));
   }
-  if (spec.type == "displacement") {
-    read_displacement(load, spec, dim);
-  } else if (spec.type == "traction") {
-    spec.vector = read_vector(load.value("value"), load.path_of("value"), dim);
-  } else if (spec.type == "pressure") {
-    spec.pressure = load.number("value");
-  } else if (spec.type == "gravity") {
-    spec.density = load.number("density");
-    require(spec.density > 0, load.path_of("density"), spec.density, "must be positive");
-    spec.vector = read_vector(load.value("g"), load.path_of("g"), dim);
-    if (auto region = load.optional_string("region")) {
-      spec.region = *region;
-      if (body.shape != "mesh")
-        throw InputError(load.path_of("region"), "= \"" + spec.region + "\": a " + body.shape +
-                                                     " has no named regions; leave \"region\" out for the whole body");
-    }
+  if (type == "displacement") {
+    spec.kind = read_displacement(load, std::move(boundary), dim);
+  } else if (type == "traction") {
+    spec.kind = TractionLoad{std::move(boundary), read_vector(load.value("value"), load.path_of("value"), dim)};
+  } else if (type == "pressure") {
+    spec.kind = PressureLoad{std::move(boundary), load.number("value")};
+  } else if (type == "gravity") {
+    spec.kind = read_gravity(load, body, dim);
   } else {
-    read_point(load, spec, body, dim);
+    spec.kind = read_point(load, body, dim);
   }
   load.finish();
   return spec;
 }
 
 }  // namespace contactqp::detail
+
+namespace contactqp {
+
+std::string LoadSpec::type() const {
+  if (is<DisplacementLoad>()) return "displacement";
+  if (is<TractionLoad>()) return "traction";
+  if (is<PressureLoad>()) return "pressure";
+  if (is<GravityLoad>()) return "gravity";
+  return "point";
+}
+
+namespace {
+
+// The boundary of a displacement, traction or pressure; nullptr for the other kinds.
+template <class Kinds>
+auto boundary_of(Kinds& kind) {
+  using Pointer = std::conditional_t<std::is_const_v<Kinds>, const std::string*, std::string*>;
+  return std::visit(
+      [](auto& load) -> Pointer {
+        using Kind = std::decay_t<decltype(load)>;
+        if constexpr (std::is_same_v<Kind, GravityLoad> || std::is_same_v<Kind, PointLoad>)
+          return nullptr;
+        else
+          return &load.boundary;
+      },
+      kind);
+}
+
+}  // namespace
+
+const std::string* LoadSpec::boundary() const { return boundary_of(kind); }
+std::string* LoadSpec::boundary() { return boundary_of(kind); }
+
+}  // namespace contactqp

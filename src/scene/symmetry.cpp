@@ -60,16 +60,20 @@ void check_symmetry(const Scene& scene) {
     for (const ObstacleSpec& o : scene.obstacles)
       if (!mirror_symmetric(o, c)) broken(o.path + " (" + o.type() + mirror_rule(o, axis), plane);
     for (const LoadSpec& load : scene.loads) {
-      if (load.type == "displacement" && load.value[c] && *load.value[c] != 0.0)
-        broken(load.path + " has u" + axis + " = " + format_value(*load.value[c]), plane);
-      if ((load.type == "traction" || load.type == "gravity") && load.vector[c] != 0.0)
-        broken(load.path + " has an " + axis + " component " + format_value(load.vector[c]), plane);
-      if (load.type == "point" && load.at && (*load.at)[c] < 0)
-        broken(load.path + " acts at " + axis + " = " + format_value((*load.at)[c]) + " < 0, outside the modelled " +
+      if (const auto* d = load.as<DisplacementLoad>(); d && d->value[c] && *d->value[c] != 0.0)
+        broken(load.path + " has u" + axis + " = " + format_value(*d->value[c]), plane);
+      const Eigen::Vector3d* along = nullptr;  // a traction and g must be parallel to the plane
+      if (const auto* t = load.as<TractionLoad>()) along = &t->traction;
+      if (const auto* g = load.as<GravityLoad>()) along = &g->g;
+      if (along && (*along)[c] != 0.0)
+        broken(load.path + " has an " + axis + " component " + format_value((*along)[c]), plane);
+      const auto* p = load.as<PointLoad>();
+      if (p && p->at && (*p->at)[c] < 0)
+        broken(load.path + " acts at " + axis + " = " + format_value((*p->at)[c]) + " < 0, outside the modelled " +
                    (dim == 2 ? "half" : "quarter") + " (give " + axis + " ≥ 0: the mirror image is implied)",
                plane);
-      if (load.type == "point" && load.at && (*load.at)[c] == 0 && load.vector[c] != 0)
-        broken(load.path + " acts on " + axis + " = 0 with an " + axis + " component " + format_value(load.vector[c]),
+      if (p && p->at && (*p->at)[c] == 0 && p->force[c] != 0)
+        broken(load.path + " acts on " + axis + " = 0 with an " + axis + " component " + format_value(p->force[c]),
                plane);
     }
   }

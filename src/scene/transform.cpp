@@ -69,9 +69,15 @@ Scene rotated(const Scene& scene) {
         },
         obstacle.shape);
   }
+  // Traction, g and point force turn; a displacement's components stay along the scene's axes
+  // and a pressure is normal to the (turned) boundary.
   for (LoadSpec& load : out.loads) {
-    load.vector = R * load.vector;  // traction, g, point force; a displacement stays local
-    if (load.at) load.at = R * *load.at;
+    if (auto* traction = load.as<TractionLoad>()) traction->traction = R * traction->traction;
+    if (auto* gravity = load.as<GravityLoad>()) gravity->g = R * gravity->g;
+    if (auto* point = load.as<PointLoad>()) {
+      point->force = R * point->force;
+      if (point->at) point->at = R * *point->at;
+    }
   }
   return out;
 }

@@ -170,6 +170,9 @@ TEST_CASE("names a mesh body does not have are errors naming the field, with a h
        "load[1].region = \"bdy\""},
       {R"("load": [{"type": "displacement", "boundary": "top", "value": [0, -0.01]}, {"type": "point", "point": "tip", "value": [0, -1]}], "contact": {"boundary": "arc"}})",
        "load[1].point = \"tip\": not a physical point"},
+      // An empty name is checked like any other (it once reached the mesh lookup: "map::at").
+      {R"("load": [{"type": "displacement", "boundary": "top", "value": [0, -0.01]}, {"type": "traction", "boundary": "", "value": [0, -1]}], "contact": {"boundary": "arc"}})",
+       "load[1].boundary = \"\": not a physical curve"},
       {R"("load": {"type": "displacement", "boundary": "top", "value": [0, -0.01]}})", "contact.boundary is missing"},
   };
   for (const Case& c : cases) {

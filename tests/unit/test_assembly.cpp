@@ -16,7 +16,7 @@ Scene small_scene(int order, bool symmetry) {
       parse_scene(patched_scene("scenes/hertz.json", R"({"body": {"mesh": {"size": 0.2, "contact_size": 0.02}}})"));
   scene.body.mesh.order = order;
   scene.body.symmetry = symmetry;
-  if (!symmetry) scene.loads[0].value[0] = 0.0;  // the full disc needs u_x held somewhere
+  if (!symmetry) scene.loads[0].as<DisplacementLoad>()->value[0] = 0.0;  // the full disc needs u_x held somewhere
   return scene;
 }
 
@@ -36,7 +36,7 @@ TEST_CASE("K is symmetric positive definite after elimination", "[unit][assembly
   // The prescribed displacement enters only through f: with δ = 0 there is no load at all.
   CHECK(qp.f.norm() > 0);
   Scene unloaded = small_scene(order, symmetry);
-  unloaded.loads[0].value[1] = 0.0;
+  unloaded.loads[0].as<DisplacementLoad>()->value[1] = 0.0;
   Model unloaded_model = build_model(unloaded);
   CHECK(assemble_qp(unloaded_model).f.norm() == 0.0);
 }

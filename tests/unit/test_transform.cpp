@@ -27,8 +27,8 @@ TEST_CASE("rotated() turns obstacles and load vectors, not prescribed components
   const Scene turned = rotated(scene);
   CHECK(turned.transform.is_identity());
   CHECK(turned.obstacles[0].as<CircleObstacle>()->center.isApprox(Eigen::Vector3d(1, 0, 0)));
-  CHECK(turned.loads[1].vector.isApprox(Eigen::Vector3d(1, 0, 0)));
-  CHECK(*turned.loads[0].value[1] == -0.02);
+  CHECK(turned.loads[1].as<GravityLoad>()->g.isApprox(Eigen::Vector3d(1, 0, 0)));
+  CHECK(*turned.loads[0].as<DisplacementLoad>()->value[1] == -0.02);
 }
 
 TEST_CASE("Hertz turned by any angle: the same force, b and p0 within 1e-6", "[unit][transform][hertz]") {
