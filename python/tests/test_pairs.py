@@ -141,6 +141,26 @@ def test_b_and_p0_within_3_percent_of_hertz(solved):
     assert math.sqrt(np.trapz((p_face - exact_face) ** 2, s_face) / np.trapz(exact_face**2, s_face)) <= 0.03
 
 
+def test_max_pressure_is_the_whole_bodys_three_node_patch_average(solved):
+    """docs/bodies.md: a pair's 2D max_pressure is the largest (lam_{i-1} + lam_i + lam_{i+1}) /
+    (w_{i-1} + w_i + w_{i+1}) along the whole body's profile; the half model's profile is
+    mirrored about the symmetry plane, where its node counts with its image (twice the force
+    over twice the tributary). Computed here from the profile: w_i = lam_i / p_i."""
+    r, _, _ = solved
+    pair = r.pairs[0]
+    s, p, f = pair.profile[:, 0], pair.profile[:, 1], pair.profile_force
+    assert s[0] == 0 and np.all(s[1:] > 0)  # both scenes are half models with a node on the plane
+    w = np.where(p > 0, f / np.where(p > 0, p, 1), np.nan)  # unloaded nodes: unknown, not needed
+    whole_f = np.concatenate([f[:0:-1], [2 * f[0]], f[1:]])
+    whole_w = np.concatenate([w[:0:-1], [2 * w[0]], w[1:]])
+    patches = (whole_f[:-2] + whole_f[1:-1] + whole_f[2:]) / (whole_w[:-2] + whole_w[1:-1] + whole_w[2:])
+    assert pair.max_pressure == pytest.approx(np.nanmax(patches), rel=1e-12)
+    assert pair.max_nodal_pressure == pytest.approx(p.max(), rel=1e-12)
+    # The one-body definition, for comparison: the nodal maximum.
+    one = contactqp.solve_scene(source_path("scenes/hertz.json"), backend="active_set")
+    assert one.contact.max_pressure == pytest.approx(one.contact.profile[:, 1].max(), rel=1e-15)
+
+
 def test_a_one_body_scene_has_no_pairs():
     r = contactqp.solve_scene(source_path("scenes/hertz.json"), backend="active_set")
     assert r.pairs == [] and r.bodies == []
