@@ -40,10 +40,14 @@ def pair_as_json(pair, dim):
                      contact_radius_last_node=pair.contact_radius_last_node)
     h = pair.hertz
     if h is not None:
-        entry["hertz"] = {"radius": h.radius, "radius_source": h.radius_source, "half_width": h.half_width,
-                          "max_pressure": h.max_pressure, "effective_modulus": h.effective_modulus,
-                          "error_half_width": h.error_half_width, "error_max_pressure": h.error_max_pressure,
+        entry["hertz"] = {"radius": h.radius, "radius_source": h.radius_source, "max_pressure": h.max_pressure,
+                          "effective_modulus": h.effective_modulus, "error_max_pressure": h.error_max_pressure,
                           "error_l2": h.error_l2}
+        if h.dim == 2:
+            entry["hertz"].update(half_width=h.half_width, error_half_width=h.error_half_width)
+        else:
+            entry["hertz"].update(force=h.force, contact_radius=h.contact_radius,
+                                  error_contact_radius=h.error_contact_radius)
     return entry
 
 
