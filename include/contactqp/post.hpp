@@ -121,9 +121,10 @@ struct PairContact {
   double contact_radius = 0, contact_radius_last_node = 0, contact_area = 0;
   Eigen::Vector3d normal = Eigen::Vector3d::UnitY();  // the mean contact normal, into the node side
   // Node side. 3D: max λ_i / w_i. 2D: the max of the three-node patch averages
-  // (λ_{i−1} + λ_i + λ_{i+1}) / (w_{i−1} + w_i + w_{i+1}) along the profile: with meshes that do
-  // not match, node-to-segment pressures alternate node by node by a few per cent (the rows do
-  // not pass the patch test), which the patch average removes (docs/bodies.md).
+  // (λ_{i−1} + λ_i + λ_{i+1}) / (w_{i−1} + w_i + w_{i+1}) along the whole body's profile (a half
+  // model's mirrored, its node on the symmetry plane counted with its image): with meshes that
+  // do not match, node-to-segment pressures alternate node by node by a few per cent (the rows
+  // do not pass the patch test), which the patch average removes (docs/bodies.md).
   double max_pressure = 0;
   double max_nodal_pressure = 0;  // node side: max λ_i / w_i, unsmoothed
   double face_max_pressure = 0;   // face side: max of its nodes' share Σ_i λ_i N_j(ξ_i) over their tributary

@@ -30,5 +30,6 @@ Bad input raises contactqp.InputError (a ValueError) naming the field.)";
   contactqp::start_petsc_runtime();
   contactqp::python::bind_errors(m);
   contactqp::python::bind_qp(m);
+  contactqp::python::bind_pairs(m);
   contactqp::python::bind_scene(m);
 }

@@ -218,8 +218,9 @@ void bind_scene(py::module_& m) {
 
 status, message, backend (None with no_contact), iterations, u (free DOFs), lam, displacement
 (every node's, dim per node), certificate, objective, timings, diagnostics, contact, hertz
-(None when Hertz does not apply), reactions, dofs, constraints, nodes, elements,
-element_order, warnings; json(), csv(), vtu() give the output files' text.)")
+(None when Hertz does not apply), reactions, pairs and bodies (a scene with several bodies:
+contactqp.PairResult, contactqp.BodyResult), dofs, constraints, nodes, elements, element_order,
+warnings; json(), csv(), vtu() give the output files' text.)")
       .def_property_readonly("status", [](const RunReport& r) { return r.result.status; })
       .def_property_readonly("converged", [](const RunReport& r) { return r.result.status == Status::Converged; })
       .def_property_readonly("message", [](const RunReport& r) { return r.result.message; })
@@ -249,6 +250,12 @@ element_order, warnings; json(), csv(), vtu() give the output files' text.)")
           "boussinesq", [](const RunReport& r) { return r.boussinesq ? py::cast(*r.boussinesq) : py::none(); },
           "Boussinesq's comparison for a scene pressed by a flat punch, else None")
       .def_property_readonly("reactions", [](const RunReport& r) { return reactions_list(r.reactions, r.model->dim); })
+      .def_property_readonly(
+          "pairs", [](const Report& r) { return pairs_list(r); },
+          "one contactqp.PairResult per contact pair of a scene with bodies (empty otherwise)")
+      .def_property_readonly(
+          "bodies", [](const Report& r) { return bodies_list(r); },
+          "one contactqp.BodyResult per body of a scene with bodies (empty otherwise)")
       .def_property_readonly("dofs", [](const RunReport& r) { return r.qp->n_dofs(); })
       .def_property_readonly("constraints", [](const RunReport& r) { return r.qp->n_constraints(); })
       .def_property_readonly("nodes", [](const RunReport& r) { return r.model->mesh.n_nodes(); })

@@ -4,7 +4,9 @@ Reference solutions are computed here, independently of contactqp: small QPs are
 enumerating every active set with numpy, as the C++ suite's solve_by_enumeration does.
 """
 import itertools
+import json
 import os
+import subprocess
 
 import numpy as np
 import pytest
@@ -17,6 +19,37 @@ SOURCE_DIR = os.environ.get("CONTACTQP_SOURCE_DIR", os.path.join(os.path.dirname
 
 def source_path(relative):
     return os.path.join(SOURCE_DIR, relative)
+
+
+CLI = os.environ.get("CONTACTQP_CLI", "contactqp")
+
+# Wall times differ from run to run; everything else must agree to round-off.
+TIMING_KEYS = {"timings", "seconds", "seconds_in_linear_solves", "factorize_seconds", "linear_solve_seconds"}
+
+
+def cli_json(tmp_path, *arguments):
+    """The command line's result JSON for these arguments (written under tmp_path), and the run."""
+    out = tmp_path / "cli.json"
+    run = subprocess.run([CLI, *arguments, "--json", str(out)], capture_output=True, text=True)
+    assert run.returncode in (0, 1), run.stderr
+    return json.loads(out.read_text()), run
+
+
+def assert_same_numbers(a, b, path=""):
+    """Every leaf equal, numbers to round-off (1e-12 relative), timings skipped."""
+    if isinstance(a, dict):
+        assert set(a) == set(b), path
+        for key in a:
+            if key not in TIMING_KEYS and not key.endswith("_seconds"):
+                assert_same_numbers(a[key], b[key], path + "." + key)
+    elif isinstance(a, list):
+        assert len(a) == len(b), path
+        for i, (x, y) in enumerate(zip(a, b)):
+            assert_same_numbers(x, y, f"{path}[{i}]")
+    elif isinstance(a, float) or isinstance(b, float):
+        assert a == pytest.approx(b, rel=1e-12, abs=1e-300), path
+    else:
+        assert a == b, path
 
 
 def solve_by_enumeration(K, f, B, g):

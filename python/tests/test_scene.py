@@ -1,7 +1,5 @@
 """solve_scene() and compare_scene() give the numbers of the command line's JSON."""
 import json
-import math
-import os
 import subprocess
 import threading
 
@@ -9,37 +7,9 @@ import numpy as np
 import pytest
 
 import contactqp
-from conftest import source_path
+from conftest import CLI, assert_same_numbers, cli_json, source_path
 
-CLI = os.environ.get("CONTACTQP_CLI", "contactqp")
 HERTZ = source_path("scenes/hertz.json")
-
-# Wall times differ from run to run; everything else must agree to round-off.
-TIMING_KEYS = {"timings", "seconds", "seconds_in_linear_solves", "factorize_seconds", "linear_solve_seconds"}
-
-
-def cli_json(tmp_path, *arguments):
-    out = tmp_path / "cli.json"
-    run = subprocess.run([CLI, *arguments, "--json", str(out)], capture_output=True, text=True)
-    assert run.returncode in (0, 1), run.stderr
-    return json.loads(out.read_text()), run
-
-
-def assert_same_numbers(a, b, path=""):
-    """Every leaf equal, numbers to round-off (1e-12 relative), timings skipped."""
-    if isinstance(a, dict):
-        assert set(a) == set(b), path
-        for key in a:
-            if key not in TIMING_KEYS and not key.endswith("_seconds"):
-                assert_same_numbers(a[key], b[key], path + "." + key)
-    elif isinstance(a, list):
-        assert len(a) == len(b), path
-        for i, (x, y) in enumerate(zip(a, b)):
-            assert_same_numbers(x, y, f"{path}[{i}]")
-    elif isinstance(a, float) or isinstance(b, float):
-        assert a == pytest.approx(b, rel=1e-12, abs=1e-300), path
-    else:
-        assert a == b, path
 
 
 def test_hertz_force_b_p0_identical_to_the_cli(tmp_path, backend):

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <vector>
 
 #include "../contact/contact.hpp"
 #include "contactqp/post.hpp"
@@ -194,26 +195,39 @@ std::vector<PairContact> summarize_pairs(const Model& model, const QuadraticProg
               [](const ContactProfilePoint& a, const ContactProfilePoint& b) { return a.s < b.s; });
     contact.max_pressure = contact.max_nodal_pressure;
     if (dim == 2) {
-      // Patch averages along the profile; with symmetry the node at s = 0 has the mirror image of
-      // its right neighbour on its left.
+      // Patch averages along the whole body's profile. With symmetry that is the half model's
+      // profile mirrored about s = 0: each node at s > 0 gets its image at −s, and the node on
+      // the symmetry plane — which carries half of the whole body's force there over half its
+      // tributary — counts with its image as one node of twice the force and length.
       std::map<int, double> tributary;
       for (int i : rows) tributary[model.candidates[i].node] = model.candidates[i].tributary * thickness;
       const auto& pr = contact.profile;
+      double s_scale = 0;
+      for (const ContactProfilePoint& point : pr) s_scale = std::max(s_scale, std::abs(point.s));
+      std::vector<double> force, width;  // per node of the whole profile, in order of s
+      if (symmetry)
+        for (size_t k = pr.size(); k-- > 0;)
+          if (pr[k].s > 1e-12 * s_scale) {
+            force.push_back(pr[k].force);
+            width.push_back(tributary[pr[k].node]);
+          }
+      for (const ContactProfilePoint& point : pr) {
+        const double copies_here = symmetry && std::abs(point.s) <= 1e-12 * s_scale ? 2.0 : 1.0;
+        force.push_back(copies_here * point.force);
+        width.push_back(copies_here * tributary[point.node]);
+      }
       double smoothed_max = 0;
-      for (size_t k = 0; k < pr.size(); ++k) {
-        double force = pr[k].force, w = tributary[pr[k].node];
+      for (size_t k = 0; k < force.size(); ++k) {
+        double f = force[k], w = width[k];
         if (k > 0) {
-          force += pr[k - 1].force;
-          w += tributary[pr[k - 1].node];
-        } else if (symmetry && pr.size() > 1) {
-          force += pr[1].force;
-          w += tributary[pr[1].node];
+          f += force[k - 1];
+          w += width[k - 1];
         }
-        if (k + 1 < pr.size()) {
-          force += pr[k + 1].force;
-          w += tributary[pr[k + 1].node];
+        if (k + 1 < force.size()) {
+          f += force[k + 1];
+          w += width[k + 1];
         }
-        if (w > 0) smoothed_max = std::max(smoothed_max, force / w);
+        if (w > 0) smoothed_max = std::max(smoothed_max, f / w);
       }
       contact.max_pressure = smoothed_max;
       contact.centre = symmetry || !(sum > 0) ? 0.0 : centre.dot(tangent);
