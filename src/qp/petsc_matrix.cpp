@@ -22,8 +22,8 @@ PetscErrorCode set_rows(Mat target, const Eigen::SparseMatrix<double>& M, const 
       values.push_back(it.value());
     }
     if (columns.empty()) continue;
-    PetscCall(MatSetValues(target, 1, &row, static_cast<PetscInt>(columns.size()), columns.data(), values.data(),
-                           mode));
+    PetscCall(
+        MatSetValues(target, 1, &row, static_cast<PetscInt>(columns.size()), columns.data(), values.data(), mode));
   }
   return 0;
 }
