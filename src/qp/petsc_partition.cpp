@@ -66,8 +66,13 @@ std::vector<int> partition_graph(const std::vector<long>& offsets, const std::ve
     for (int v = 0; v < n; ++v) part[v] = static_cast<int>(indices[v]);
     ISRestoreIndices(all, &indices);
   } catch (const PartitionFailure&) {
-    part.clear();  // the caller goes on without a partition (and says so)
+    part.clear();
   }
+  // Every rank must own elements by the same rows: without a partition anywhere, none at all
+  // (the caller goes on in the DOFs' own order, and says so).
+  int failed = part.empty(), any_failed = 0;
+  MPI_Allreduce(&failed, &any_failed, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+  if (any_failed) part.clear();
   if (all) ISDestroy(&all);
   if (mine) ISDestroy(&mine);
   if (partitioning) MatPartitioningDestroy(&partitioning);

@@ -4,7 +4,6 @@
 #include <utility>
 
 #include "contactqp/errors.hpp"
-#include "contactqp/processes.hpp"
 
 namespace contactqp {
 namespace {
@@ -82,16 +81,6 @@ void validate(const QuadraticProgram& qp) {
   if (!all_finite(qp.B)) throw InputError("qp.B", "has an entry that is not finite");
   if (!qp.f.allFinite()) throw InputError("qp.f", "has an entry that is not finite");
   if (!qp.g.allFinite()) throw InputError("qp.g", "has an entry that is not finite");
-}
-
-VectorXd K_times(const QuadraticProgram& qp, const VectorXd& u) {
-  VectorXd Ku = qp.K * u;
-  if (qp.K_is_rank_share) sum_over_ranks(Ku.data(), Ku.size());
-  return Ku;
-}
-
-double primal_objective(const QuadraticProgram& qp, const VectorXd& u) {
-  return 0.5 * u.dot(K_times(qp, u)) - qp.f.dot(u);
 }
 
 }  // namespace contactqp
