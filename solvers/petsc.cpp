@@ -18,7 +18,8 @@
 namespace contactqp::detail {
 namespace {
 
-// The backend options: method=pdas|tao, inexact=true|false (pdas's loose early steps).
+// The backend options: method=pdas|tao; for pdas inexact=true|false (loose early steps) and
+// reuse_preconditioner=true|false (a step's GAMG kept while its solves cost less than its set-up).
 BoundQpOptions backend_settings(const SolveOptions& options) {
   BoundQpOptions settings;
   for (const auto& [key, value] : options_for(Backend::Petsc, options.backend_options)) {
@@ -26,12 +27,13 @@ BoundQpOptions backend_settings(const SolveOptions& options) {
       if (value != "pdas" && value != "tao")
         throw InputError(option_field(key), "= \"" + value + "\": not a method of petsc; valid: pdas, tao");
       settings.method = value;
-    } else if (key == "inexact") {
+    } else if (key == "inexact" || key == "reuse_preconditioner") {
       if (value != "true" && value != "false" && value != "1" && value != "0")
         throw InputError(option_field(key), "= \"" + value + "\": not true or false");
-      settings.inexact = value == "true" || value == "1";
+      (key == "inexact" ? settings.inexact : settings.reuse_preconditioner) = value == "true" || value == "1";
     } else {
-      throw InputError(option_field(key), "= \"" + value + "\": not an option of petsc; valid: method, inexact");
+      throw InputError(option_field(key),
+                       "= \"" + value + "\": not an option of petsc; valid: method, inexact, reuse_preconditioner");
     }
   }
   return settings;
@@ -91,6 +93,7 @@ SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options)
   result.diagnostics["outer_iterations"] = solved.iterations;
   result.diagnostics["krylov_iterations"] = static_cast<double>(solved.krylov_iterations);
   result.diagnostics["linear_solves"] = static_cast<double>(solved.linear_solves);
+  if (solved.preconditioner_setups > 0) result.diagnostics["preconditioner_setups"] = solved.preconditioner_setups;
   result.diagnostics["active_constraints"] = solved.active;
   result.diagnostics["kkt_residual"] = solved.residual;
   result.diagnostics["petsc_matrix_mb_per_rank"] = solved.matrix_bytes / 1048576.0;
@@ -101,9 +104,13 @@ SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options)
   result.diagnostics["k_nonzeros_this_rank"] = static_cast<double>(qp.K.nonZeros());
 
   const std::string how = solved.method + "; " + std::to_string(solved.iterations) + " outer steps, " +
-                          std::to_string(solved.krylov_iterations) + " Krylov iterations; " +
-                          std::to_string(qp.n_constraints()) + " candidate rows, " + std::to_string(solved.active) +
-                          " in contact; A " + short_number(solved.matrix_bytes / 1048576.0) + " MiB per rank" +
+                          std::to_string(solved.krylov_iterations) + " Krylov iterations" +
+                          (solved.preconditioner_setups > 0
+                               ? ", " + std::to_string(solved.preconditioner_setups) + " preconditioner set-ups"
+                               : std::string()) +
+                          "; " + std::to_string(qp.n_constraints()) + " candidate rows, " +
+                          std::to_string(solved.active) + " in contact; A " +
+                          short_number(solved.matrix_bytes / 1048576.0) + " MiB per rank" +
                           (options.verbose ? "; PETSc memory per rank " + short_number(solved.petsc_bytes / 1048576.0) +
                                                  " MiB (A, its working copy and the preconditioner)"
                                            : std::string());

@@ -276,8 +276,8 @@ void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& option
   std::set<std::vector<char>> seen;
   // Loose solves until a step's active set repeats or passes the test; then final-rule solves
   // only (a loose step that passes is solved again from where it is).
-  bool tight = false;
-  double previous_residual = 1.0;
+  bool tight = false, rebuild = false;
+  double previous_residual = 1.0, setup_seconds = 0;
   for (int k = 1;; ++k) {
     seen.insert(active);
     // The system of this active set: v_i = upper_i on the active bounds, A v = b on the rest.
@@ -296,6 +296,20 @@ void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& option
           "MatZeroRowsColumns");
     if (work.modes) check(MatSetNearNullSpace(work.W, work.modes), "MatSetNearNullSpace");
     check(KSPSetOperators(work.ksp, work.W, work.W), "KSPSetOperators");
+    // The preconditioner of an earlier step's matrix serves the later ones (reuse_preconditioner):
+    // they differ from it only in the fixed rows, and CG converges with any SPD preconditioner.
+    // It is set up afresh once a solve with it took longer than its set-up did (cheap set-ups,
+    // as in 2D, are then redone each step; dear ones, as in 3D, kept), or to repeat a solve that
+    // failed with it.
+    const bool keep = options.reuse_preconditioner && result.preconditioner_setups > 0 && !rebuild;
+    check(KSPSetReusePreconditioner(work.ksp, keep ? PETSC_TRUE : PETSC_FALSE), "KSPSetReusePreconditioner");
+    Stopwatch watch;
+    if (!keep) {
+      ++result.preconditioner_setups;
+      check(KSPSetUp(work.ksp), "KSPSetUp");
+      setup_seconds = watch.seconds();
+      watch.restart();
+    }
     const double force = std::max(b_norm, inf_norm(mu));
     const double final_target = force > 0 ? kInnerFraction * options.tol * force : kInnerFraction * options.tol;
     const bool solved_tight = tight || !options.inexact;
@@ -309,6 +323,8 @@ void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& option
     result.iterations = k;
     KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
     KSPGetConvergedReason(work.ksp, &reason);
+    rebuild = keep && (reason < 0 || watch.seconds() > setup_seconds);
+    if (reason < 0 && keep && k < options.max_iterations) continue;  // the same step, set up afresh
     if (reason < 0) {
       result.status = Status::NumericalError;
       result.message = reason_text(work.ksp, iterations, work.target);

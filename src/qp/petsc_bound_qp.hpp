@@ -38,6 +38,9 @@ struct BoundQpOptions {
   // pdas: inexact steps (looser KSP solves while the active set still changes, the final
   // steps at the inner rule); false solves every step at the inner rule.
   bool inexact = true;
+  // pdas: keep a step's preconditioner for the later steps until a solve with it takes longer
+  // than its set-up did, or fails; false sets up every step afresh.
+  bool reuse_preconditioner = true;
   bool verbose = false;
   // The relative KKT residual of an iterate in the caller's terms (v and μ on every rank):
   // the loop stops when it is ≤ tol. Stationarity holds to the inner tolerance by construction.
@@ -52,11 +55,12 @@ struct BoundQpResult {
   int iterations = 0;     // outer: active-set steps, or TAO's iterations
   long long krylov_iterations = 0;
   long long linear_solves = 0;
-  int active = 0;              // bounds active at the end
-  double residual = 0;         // the caller's residual at the end
-  double setup_seconds = 0;    // the matrix into PETSc
-  double iterate_seconds = 0;  // the outer loop
-  std::string method;          // what ran, e.g. "pdas, cg + gamg, 3 near-null modes"
+  int preconditioner_setups = 0;  // pdas: KSP set-ups of the preconditioner
+  int active = 0;                 // bounds active at the end
+  double residual = 0;            // the caller's residual at the end
+  double setup_seconds = 0;       // the matrix into PETSc
+  double iterate_seconds = 0;     // the outer loop
+  std::string method;             // what ran, e.g. "pdas, cg + gamg, 3 near-null modes"
   // Memory per rank, the largest over the ranks (MatGetInfo): A's PETSc storage, and the most
   // that A, its working copy and the multigrid hierarchy (coarse operators, interpolations)
   // held at once.
