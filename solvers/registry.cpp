@@ -32,10 +32,12 @@ std::shared_ptr<const LinearSolver> factor_of_K(const QuadraticProgram& qp, cons
   std::shared_ptr<const LinearSolver> factor = make_linear_solver(qp.K, linear_solver_options(qp, options));
   timings.add("factorize", clock.seconds());
   if (!factor->ok()) {
+    // A K that is not positive definite is most often a body free to move rigidly: say so then.
+    const bool indefinite = factor->message().find("not positive definite") != std::string::npos;
     message =
         options.linear_solver == LinearSolverKind::Cholmod
             ? "the stiffness matrix K could not be factorised: " + factor->message() +
-                  " (is the body restrained against rigid motion?)"
+                  (indefinite ? " (is the body restrained against rigid motion?)" : "")
             : "the " + to_string(options.linear_solver) + " solver of K could not be set up: " + factor->message();
     return nullptr;
   }

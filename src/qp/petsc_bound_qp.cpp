@@ -323,7 +323,10 @@ void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& option
     result.iterations = k;
     KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
     KSPGetConvergedReason(work.ksp, &reason);
-    rebuild = keep && (reason < 0 || watch.seconds() > setup_seconds);
+    // Timings differ between ranks, and PCSetUp is collective: the ranks decide together.
+    int mine = keep && (reason < 0 || watch.seconds() > setup_seconds), any = 0;
+    MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+    rebuild = any != 0;
     if (reason < 0 && keep && k < options.max_iterations) continue;  // the same step, set up afresh
     if (reason < 0) {
       result.status = Status::NumericalError;
