@@ -19,7 +19,7 @@ namespace contactqp::detail {
 namespace {
 
 // The backend options: method=pdas|tao; for pdas inexact=true|false (loose early steps) and
-// reuse_preconditioner=true|false (a step's GAMG kept while its solves cost less than its set-up).
+// reuse_preconditioner=true|false (a step's GAMG kept while its solves stay short).
 BoundQpOptions backend_settings(const SolveOptions& options) {
   BoundQpOptions settings;
   for (const auto& [key, value] : options_for(Backend::Petsc, options.backend_options)) {

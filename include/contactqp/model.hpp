@@ -101,6 +101,10 @@ Model build_model(const Scene& scene, const BuildOptions& options = {});
 struct RankShare {
   int rank = 0;
   int ranks = 1;
+  // The DOFs' rows to use (a permutation, as QuadraticProgram::distributed_row), or empty to
+  // partition the mesh now. PT-Scotch's partition differs from call to call in one process, so
+  // shares meant to sum to one K must be given the rows the first of them chose.
+  std::vector<int> distributed_row;
 };
 
 // Assembles K (free DOFs; the whole, or a rank's share), f (prescribed displacements moved to

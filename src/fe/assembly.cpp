@@ -70,7 +70,11 @@ QuadraticProgram assemble_qp(Model& model, const RankShare& share) {
   qp.f = Eigen::VectorXd::Zero(model.n_free);
   if (share.ranks > 1) {
     qp.K_is_rank_share = true;
-    qp.distributed_row = detail::distributed_rows(model, share.ranks);
+    qp.distributed_row =
+        share.distributed_row.empty() ? detail::distributed_rows(model, share.ranks) : share.distributed_row;
+    if (!share.distributed_row.empty() && static_cast<int>(share.distributed_row.size()) != model.n_free)
+      throw InputError("RankShare.distributed_row", "has " + std::to_string(share.distributed_row.size()) +
+                                                        " entries for " + std::to_string(model.n_free) + " DOFs");
     if (qp.distributed_row.empty())
       model.warnings.push_back(
           "the mesh could not be partitioned between the MPI ranks (PETSc's MatPartitioning "

@@ -38,9 +38,11 @@ struct BoundQpOptions {
   // pdas: inexact steps (looser KSP solves while the active set still changes, the final
   // steps at the inner rule); false solves every step at the inner rule.
   bool inexact = true;
-  // pdas: keep a step's preconditioner for the later steps until a solve with it takes longer
-  // than its set-up did, or fails; false sets up every step afresh.
-  bool reuse_preconditioner = true;
+  // pdas: keep a step's preconditioner for the later steps until a solve with it needs more
+  // than 200 CG iterations, or fails (false: every step set up afresh, the default). Much
+  // faster in 3D, where the set-ups are the cost; off by default because the path of the
+  // active set then depends on round-off (a scene in other units can take other steps).
+  bool reuse_preconditioner = false;
   bool verbose = false;
   // The relative KKT residual of an iterate in the caller's terms (v and μ on every rank):
   // the loop stops when it is ≤ tol. Stationarity holds to the inner tolerance by construction.

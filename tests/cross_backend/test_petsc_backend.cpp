@@ -1,13 +1,18 @@
 // The petsc backend (solvers/petsc.cpp, docs/petsc.md) against active_set on the shipped
 // scenes, 2D and 3D, the nodes with two rows and several obstacles included; its alternative
 // method (TAO); and what it reports: outer and Krylov iterations, PETSc's divergence reason,
-// unused options, bad input. The mpirun runs are tests/tools/check_mpirun.py (ctest
-// mpirun_petsc_hertz); the generic QPs of test_backends.cpp reach it through available_backends().
+// unused options, bad input; K assembled in rank shares and the mesh partition behind them. The
+// mpirun runs are tests/tools/check_mpirun.py (ctest mpirun_petsc_hertz, _sphere); the generic QPs of test_backends.cpp reach it through available_backends().
 #include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <vector>
 
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/model.hpp"
+#include "contactqp/processes.hpp"
 #include "contactqp/solve.hpp"
 #include "test_support.hpp"
 
@@ -70,6 +75,18 @@ TEST_CASE("petsc agrees with active_set on the shipped scenes, 2D and 3D", "[cro
   REQUIRE(r.K_factor);
   CHECK(r.K_factor->statistics().name == "petsc");
   CHECK(r.warnings.empty());
+  CHECK(r.diagnostics.at("preconditioner_setups") == r.diagnostics.at("linear_solves"));  // fresh each step
+
+  // The kept preconditioner (reuse_preconditioner): the same answer from fewer set-ups.
+  SolveOptions kept = petsc_options(tol);
+  kept.backend_options["reuse_preconditioner"] = "true";
+  const SolveResult k = solve(qp, kept);
+  CAPTURE(k.message);
+  REQUIRE(k.status == Status::Converged);
+  CHECK(relative_difference(k.u, reference.u) <= 1e-6);
+  CHECK(relative_difference(k.lambda, reference.lambda) <= 1e-5);
+  CHECK(certify(qp, k.u, k.lambda).kkt_max() <= 10 * tol);
+  CHECK(k.diagnostics.at("preconditioner_setups") < k.diagnostics.at("linear_solves"));
 }
 
 TEST_CASE("petsc's alternative, TAO's bounded Newton on the same bound form, gives the same answer",
@@ -122,4 +139,54 @@ TEST_CASE("the CLI: --backend petsc, and a bad --linear-solver is bad input", "[
   const CliRun run = run_cli("solve " + scene + " --backend petsc --tol 1e-10");
   CHECK(run.exit_status == 0);
   CHECK_THAT(run.out, Catch::Matchers::Contains("Krylov iterations"));
+}
+
+TEST_CASE("K in rank shares: the shares of two ranks sum to the whole K, f stays whole, the rows are a permutation",
+          "[petsc][mpi]") {
+  if (!petsc_built_in()) return;
+  // On one process the two shares are assembled one after the other, the second on the rows
+  // the first chose: what the two ranks of `mpirun -n 2` hold after their one collective
+  // partition.
+  for (const char* scene : {"scenes/hertz.json", "scenes/hertz-sphere.json"}) {
+    INFO(scene);
+    Model model = build_model(load_scene(source_path(scene)));
+    const QuadraticProgram whole = assemble_qp(model);
+    const QuadraticProgram first = assemble_qp(model, RankShare{0, 2});
+    const QuadraticProgram second = assemble_qp(model, RankShare{1, 2, first.distributed_row});
+    CHECK_FALSE(whole.K_is_rank_share);
+    CHECK(first.K_is_rank_share);
+    const SparseMatrix sum = first.K + second.K;
+    const double scale = whole.K.coeffs().cwiseAbs().maxCoeff();
+    CHECK(SparseMatrix(sum - whole.K).coeffs().cwiseAbs().maxCoeff() <= 1e-14 * scale);
+    CHECK(first.f == whole.f);  // bit for bit: every rank moves all prescribed displacements
+    CHECK(second.f == whole.f);
+    // Each share holds about half of K: the partition keeps the boundary between them small.
+    CHECK(first.K.nonZeros() <= 0.6 * whole.K.nonZeros());
+    CHECK(second.K.nonZeros() <= 0.6 * whole.K.nonZeros());
+    std::vector<int> rows = first.distributed_row;
+    REQUIRE(static_cast<int>(rows.size()) == whole.n_dofs());
+    std::sort(rows.begin(), rows.end());
+    for (int i = 0; i < whole.n_dofs(); ++i) REQUIRE(rows[i] == i);
+  }
+}
+
+TEST_CASE("partition_graph splits a path of 1000 vertices into two halves with one edge between them", "[petsc][mpi]") {
+  if (!petsc_built_in()) return;
+  const int n = 1000;
+  std::vector<long> offsets{0};
+  std::vector<int> neighbours;
+  for (int v = 0; v < n; ++v) {
+    if (v > 0) neighbours.push_back(v - 1);
+    if (v + 1 < n) neighbours.push_back(v + 1);
+    offsets.push_back(static_cast<long>(neighbours.size()));
+  }
+  const std::vector<int> part = partition_graph(offsets, neighbours, 2);
+  REQUIRE(static_cast<int>(part.size()) == n);
+  int in_first = 0, cut = 0;
+  for (int v = 0; v < n; ++v) {
+    in_first += part[v] == 0;
+    if (v + 1 < n) cut += part[v] != part[v + 1];
+  }
+  CHECK(std::abs(in_first - n / 2) <= n / 20);  // PT-Scotch balances to a few per cent
+  CHECK(cut <= 2);
 }
