@@ -3,7 +3,8 @@
 # scenes/hertz-sphere-large.json solved by its default backend, petsc, on 1 and on 2 ranks, each
 # rank under /usr/bin/time -v (peak resident memory per rank), with --phase-memory (the peak of
 # each phase) and PETSc's -log_view (where the solve's time went); then CHOLMOD's symbolic
-# analysis of the same K (factor_prediction): what active_set would need, which does not fit.
+# analysis of the same K (factor_prediction): what active_set would need, which does not fit;
+# and active_set itself on CHOLMOD (CHOLMOD=0 skips it).
 #
 #     benchmarks/petsc/large.sh [BUILD_DIR] [OUT_DIR]      (about an hour on 2 cores, 14 GB)
 #     RANKS=2 benchmarks/petsc/large.sh                    (only the 2-rank run)
@@ -28,5 +29,11 @@ for RANKS in ${RANKS:-1 2}; do
   if [ "$RANKS" -gt 1 ]; then set -- mpirun -n "$RANKS" --oversubscribe "$@"; fi
   "$@" >"$OUT/summary-$RANKS.txt" 2>"$OUT/phases-$RANKS.txt" || true
 done
+# The direct route on the same scene: active_set on CHOLMOD (refused at the analysis on this
+# machine: the factor passes 2^31 entries), and CHOLMOD's prediction of the factor it would need.
+if [ "${CHOLMOD:-1}" = 1 ]; then
+  /usr/bin/time -v "$BUILD/contactqp" solve "$SCENE" --backend active_set --json "$OUT/active-set-cholmod.json" \
+    --quiet --phase-memory >"$OUT/active-set-cholmod-summary.txt" 2>"$OUT/active-set-cholmod-time.txt" || true
+fi
 "$BUILD/benchmarks/scaling/factor_prediction" --scenes "$SCENE" --out "$OUT"
 grep -h "Maximum resident" "$OUT"/time-*.txt
