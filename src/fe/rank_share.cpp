@@ -1,10 +1,9 @@
 // distributed_rows() and owned_elements() (rank_share.hpp).
 #include "rank_share.hpp"
 
-#include <algorithm>
-
 #include "contactqp/mesh.hpp"
 #include "contactqp/processes.hpp"
+#include "node_elements.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -18,25 +17,12 @@ int owner_of_row(int row, int n, int ranks) {
 
 // The mesh's nodes and, for each, the nodes it shares an element with (itself included).
 void node_graph(const Mesh& mesh, std::vector<long>& offsets, std::vector<int>& neighbours) {
-  const int npe = mesh.nodes_per_element(), n_nodes = mesh.n_nodes();
-  std::vector<long> first(n_nodes + 1, 0);
-  for (int node : mesh.elements) ++first[node + 1];
-  for (int v = 0; v < n_nodes; ++v) first[v + 1] += first[v];
-  std::vector<int> element_at(first.back());
-  std::vector<long> next(first.begin(), first.end() - 1);
-  for (int e = 0; e < mesh.n_elements(); ++e)
-    for (int k = 0; k < npe; ++k) element_at[next[mesh.element(e)[k]]++] = e;
+  const ElementsAtNodes at = elements_at_nodes(mesh);
   offsets.assign(1, 0);
   neighbours.clear();
   std::vector<int> around;
-  for (int v = 0; v < n_nodes; ++v) {
-    around.clear();
-    for (long k = first[v]; k < first[v + 1]; ++k) {
-      const int* nodes = mesh.element(element_at[k]);
-      around.insert(around.end(), nodes, nodes + npe);
-    }
-    std::sort(around.begin(), around.end());
-    around.erase(std::unique(around.begin(), around.end()), around.end());
+  for (int v = 0; v < mesh.n_nodes(); ++v) {
+    neighbours_of(mesh, at, v, around);
     neighbours.insert(neighbours.end(), around.begin(), around.end());
     offsets.push_back(static_cast<long>(neighbours.size()));
   }

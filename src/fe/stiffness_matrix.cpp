@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "contactqp/mesh.hpp"
+#include "node_elements.hpp"
 #include "rank_share.hpp"
 
 namespace contactqp::detail {
@@ -44,17 +45,9 @@ void in_parallel(int n, const Work& work) {
 // owned elements add to.
 void build_pattern(const Model& model, const std::vector<char>& owned, Eigen::SparseMatrix<double>& K) {
   const Mesh& mesh = model.mesh;
-  const int npe = mesh.nodes_per_element(), dim = mesh.dim, n_nodes = mesh.n_nodes();
-  // Elements at each node (CSR), then each node's neighbours: the nodes of those elements.
-  std::vector<int> first(n_nodes + 1, 0);
-  for (int e = 0; e < mesh.n_elements(); ++e)
-    if (owned[e])
-      for (int k = 0; k < npe; ++k) ++first[mesh.element(e)[k] + 1];
-  for (int n = 0; n < n_nodes; ++n) first[n + 1] += first[n];
-  std::vector<int> element_at(first.back()), next(first.begin(), first.end() - 1);
-  for (int e = 0; e < mesh.n_elements(); ++e)
-    if (owned[e])
-      for (int k = 0; k < npe; ++k) element_at[next[mesh.element(e)[k]]++] = e;
+  const int dim = mesh.dim, n_nodes = mesh.n_nodes();
+  // Elements at each node, then each node's neighbours: the nodes of those elements.
+  const ElementsAtNodes at = elements_at_nodes(mesh, owned);
 
   std::vector<int> free_of_node(n_nodes, 0);  // free DOFs per node
   for (int n = 0; n < n_nodes; ++n)
@@ -65,14 +58,8 @@ void build_pattern(const Model& model, const std::vector<char>& owned, Eigen::Sp
   std::vector<std::vector<int>> rows_of_node(n_nodes);
   std::size_t nnz = 0;
   for (int n = 0; n < n_nodes; ++n) {
-    if (free_of_node[n] == 0 || first[n] == first[n + 1]) continue;
-    neighbours.clear();
-    for (int k = first[n]; k < first[n + 1]; ++k) {
-      const int* v = mesh.element(element_at[k]);
-      neighbours.insert(neighbours.end(), v, v + npe);
-    }
-    std::sort(neighbours.begin(), neighbours.end());
-    neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
+    if (free_of_node[n] == 0 || at.first[n] == at.first[n + 1]) continue;
+    neighbours_of(mesh, at, n, neighbours);
     std::vector<int>& rows = rows_of_node[n];
     // free_index increases with the DOF, so the rows come out ascending.
     for (int m : neighbours)
