@@ -1,10 +1,11 @@
 // ParaView output: the mesh and the solution as a VTK XML unstructured grid with binary
 // (base64) arrays, which VTK and ParaView read directly.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <sstream>
+#include <string>
 
 #include "../contact/contact.hpp"
 #include "contactqp/io.hpp"
@@ -35,46 +36,71 @@ const char* byte_order() {
   return first == 1 ? "LittleEndian" : "BigEndian";
 }
 
-std::string base64(const unsigned char* data, std::size_t size) {
+// VTK's inline binary block: base64 of a UInt64 byte count followed by the data, encoded as one
+// stream, appended to `out` in place (the block is never copied whole: a 1e6-DOF file has
+// 1.1e8 bytes of arrays).
+void append_binary_block(std::string& out, const void* data, std::uint64_t bytes) {
   static const char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve(4 * ((size + 2) / 3));
-  for (std::size_t i = 0; i < size; i += 3) {
-    const std::uint32_t chunk = (std::uint32_t(data[i]) << 16) | (i + 1 < size ? std::uint32_t(data[i + 1]) << 8 : 0) |
-                                (i + 2 < size ? std::uint32_t(data[i + 2]) : 0);
-    out += kAlphabet[(chunk >> 18) & 63];
-    out += kAlphabet[(chunk >> 12) & 63];
-    out += i + 1 < size ? kAlphabet[(chunk >> 6) & 63] : '=';
-    out += i + 2 < size ? kAlphabet[chunk & 63] : '=';
+  const std::uint64_t total = sizeof bytes + bytes;
+  const std::size_t start = out.size();
+  out.resize(start + 4 * ((total + 2) / 3));
+  char* to = out.data() + start;
+  // The count's 8 bytes and the data's first one make three full groups; then the data alone.
+  unsigned char head[9] = {};
+  std::memcpy(head, &bytes, sizeof bytes);
+  const auto* from = static_cast<const unsigned char*>(data);
+  std::uint64_t used = 0;  // data bytes already in `head`
+  if (bytes) head[8] = from[used++];
+  auto put = [&to](std::uint32_t chunk, int significant) {
+    to[0] = kAlphabet[(chunk >> 18) & 63];
+    to[1] = kAlphabet[(chunk >> 12) & 63];
+    to[2] = significant > 1 ? kAlphabet[(chunk >> 6) & 63] : '=';
+    to[3] = significant > 2 ? kAlphabet[chunk & 63] : '=';
+    to += 4;
+  };
+  const int head_bytes = bytes ? 9 : 8;
+  for (int i = 0; i < head_bytes; i += 3) {
+    const int n = std::min(3, head_bytes - i);
+    put((std::uint32_t(head[i]) << 16) | (n > 1 ? std::uint32_t(head[i + 1]) << 8 : 0) |
+            (n > 2 ? std::uint32_t(head[i + 2]) : 0),
+        n);
   }
-  return out;
+  const std::uint64_t rest = bytes - used, full = rest / 3 * 3;
+  const unsigned char* p = from + used;
+  for (std::uint64_t i = 0; i < full; i += 3, p += 3)
+    put((std::uint32_t(p[0]) << 16) | (std::uint32_t(p[1]) << 8) | std::uint32_t(p[2]), 3);
+  if (rest > full)
+    put((std::uint32_t(p[0]) << 16) | (rest - full > 1 ? std::uint32_t(p[1]) << 8 : 0), int(rest - full));
 }
 
-// One <DataArray> in VTK's inline binary format: base64 of a UInt64 byte count, then the data.
+// One <DataArray> in VTK's inline binary format, appended to `out`.
 template <class T>
-std::string data_array(const std::string& type, const std::string& name, int components, const std::vector<T>& values) {
-  const std::uint64_t bytes = values.size() * sizeof(T);
-  std::vector<unsigned char> block(sizeof bytes + bytes);
-  std::memcpy(block.data(), &bytes, sizeof bytes);
-  if (bytes) std::memcpy(block.data() + sizeof bytes, values.data(), bytes);
-  std::ostringstream out;
-  out << "        <DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\"" << components
-      << "\" format=\"binary\">\n          " << base64(block.data(), block.size()) << "\n        </DataArray>\n";
-  return out.str();
+void data_array(std::string& out, const char* type, const std::string& name, int components, const T* values,
+                std::size_t count) {
+  out += "        <DataArray type=\"";
+  out += type;
+  out += "\" Name=\"" + name + "\" NumberOfComponents=\"" + std::to_string(components) +
+         "\" format=\"binary\">\n          ";
+  append_binary_block(out, values, count * sizeof(T));
+  out += "\n        </DataArray>\n";
 }
 
-std::string scalars(const std::string& name, const Eigen::VectorXd& values) {
-  return data_array("Float64", name, 1, std::vector<double>(values.data(), values.data() + values.size()));
+void scalars(std::string& out, const std::string& name, const Eigen::VectorXd& values) {
+  data_array(out, "Float64", name, 1, values.data(), static_cast<std::size_t>(values.size()));
 }
 
 // A nodal vector field of dim components per node as 3 components (z = 0 in 2D), as
 // ParaView's vector filters expect.
-std::string vectors(const std::string& name, const Eigen::VectorXd& field, int dim) {
+void vectors(std::string& out, const std::string& name, const Eigen::VectorXd& field, int dim) {
+  if (dim == 3) {
+    data_array(out, "Float64", name, 3, field.data(), static_cast<std::size_t>(field.size()));
+    return;
+  }
   const Eigen::Index n = field.size() / dim;
   std::vector<double> xyz(3 * n, 0.0);
   for (Eigen::Index k = 0; k < n; ++k)
     for (int c = 0; c < dim; ++c) xyz[3 * k + c] = field[dim * k + c];
-  return data_array("Float64", name, 3, xyz);
+  data_array(out, "Float64", name, 3, xyz.data(), xyz.size());
 }
 
 // Pressure, contact force, gap and the contact-boundary mask at every node.
@@ -137,38 +163,47 @@ std::string vtu_document(const RunReport& report) {
   for (int e = 0; e < mesh.n_elements(); ++e) offsets[e] = static_cast<std::int64_t>(npe) * (e + 1);
   const std::vector<std::uint8_t> types(mesh.n_elements(), vtk_cell_type(mesh.type()));
   const int dim = mesh.dim;
+  const std::size_t n = static_cast<std::size_t>(mesh.n_nodes()), n_cells = static_cast<std::size_t>(mesh.n_elements());
+  // The arrays' bytes (in base64, 4 characters per 3 bytes) and some for the markup: one allocation.
+  const std::size_t n_scalars = (dim == 3 ? 9 : 7) + (model.bodies.empty() ? 0 : 1);
+  const std::size_t array_bytes =
+      8 * (3 * n * 3 + n_scalars * n) + 8 * (connectivity.size() + offsets.size()) + n_cells;
+  std::string out;
+  out.reserve(4 * array_bytes / 3 + 4096);
+  out += "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"";
+  out += byte_order();
+  out += "\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"" + std::to_string(n) +
+         "\" NumberOfCells=\"" + std::to_string(n_cells) + "\">\n" +
+         "      <PointData Scalars=\"von_mises\" Vectors=\"displacement\">\n";
+  vectors(out, "displacement", displacement, dim);
+  scalars(out, "sigma_xx", stress.xx);
+  scalars(out, "sigma_yy", stress.yy);
+  scalars(out, "sigma_xy", stress.xy);
+  scalars(out, "sigma_zz", stress.zz);
+  if (dim == 3) {
+    scalars(out, "sigma_yz", stress.yz);
+    scalars(out, "sigma_xz", stress.xz);
+  }
+  scalars(out, "von_mises", stress.von_mises);
+  scalars(out, "contact_pressure", contact.pressure);
+  vectors(out, "contact_force", contact.force, dim);
+  scalars(out, "gap", contact.gap);
+  scalars(out, "contact_boundary", contact.mask);
   // With several bodies, which body each node belongs to (0, 1, ... in the scene's order).
-  std::string body_array;
   if (!model.bodies.empty()) {
     Eigen::VectorXd body = Eigen::VectorXd::Zero(mesh.n_nodes());
     for (size_t b = 0; b < model.bodies.size(); ++b)
       body.segment(model.bodies[b].first_node, model.bodies[b].n_nodes).setConstant(static_cast<double>(b));
-    body_array = scalars("body", body);
+    scalars(out, "body", body);
   }
-  const std::string shear_3d =
-      dim == 3 ? scalars("sigma_yz", stress.yz) + scalars("sigma_xz", stress.xz) : std::string();
-
-  std::ostringstream out;
-  out << "<?xml version=\"1.0\"?>\n"
-      << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"" << byte_order()
-      << "\" header_type=\"UInt64\">\n"
-      << "  <UnstructuredGrid>\n"
-      << "    <Piece NumberOfPoints=\"" << mesh.n_nodes() << "\" NumberOfCells=\"" << mesh.n_elements() << "\">\n"
-      << "      <PointData Scalars=\"von_mises\" Vectors=\"displacement\">\n"
-      << vectors("displacement", displacement, dim) << scalars("sigma_xx", stress.xx) << scalars("sigma_yy", stress.yy)
-      << scalars("sigma_xy", stress.xy) << scalars("sigma_zz", stress.zz) << shear_3d
-      << scalars("von_mises", stress.von_mises) << scalars("contact_pressure", contact.pressure)
-      << vectors("contact_force", contact.force, dim) << scalars("gap", contact.gap)
-      << scalars("contact_boundary", contact.mask) << body_array << "      </PointData>\n"
-      << "      <Points>\n"
-      << data_array("Float64", "Points", 3, points) << "      </Points>\n"
-      << "      <Cells>\n"
-      << data_array("Int64", "connectivity", 1, connectivity) << data_array("Int64", "offsets", 1, offsets)
-      << data_array("UInt8", "types", 1, types) << "      </Cells>\n"
-      << "    </Piece>\n"
-      << "  </UnstructuredGrid>\n"
-      << "</VTKFile>\n";
-  return out.str();
+  out += "      </PointData>\n      <Points>\n";
+  data_array(out, "Float64", "Points", 3, points.data(), points.size());
+  out += "      </Points>\n      <Cells>\n";
+  data_array(out, "Int64", "connectivity", 1, connectivity.data(), connectivity.size());
+  data_array(out, "Int64", "offsets", 1, offsets.data(), offsets.size());
+  data_array(out, "UInt8", "types", 1, types.data(), types.size());
+  out += "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+  return out;
 }
 
 }  // namespace contactqp

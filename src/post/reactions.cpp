@@ -1,4 +1,6 @@
 // Support reactions: what the prescribed displacements push with.
+#include <algorithm>
+
 #include "../contact/contact.hpp"
 #include "contactqp/post.hpp"
 
@@ -7,6 +9,16 @@ namespace contactqp {
 std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
                                 const Eigen::VectorXd& lambda) {
   const Mesh& mesh = model.mesh;
+  // Only the nodes of prescribed boundaries need their residual, so only the elements at them
+  // are visited, in element order: each node's sum is the one a loop over all elements makes.
+  std::vector<char> prescribed(mesh.n_nodes(), 0);
+  bool any = false;
+  for (const LoadSpec& load : model.scene.loads)
+    if (const DisplacementLoad* d = load.as<DisplacementLoad>()) {
+      for (int node : boundary_nodes(mesh, d->boundary)) prescribed[node] = 1;
+      any = true;
+    }
+  if (!any) return {};
   const Eigen::VectorXd displacement = full_displacement(model, u);
   const std::vector<ElementLaw> laws = element_laws(model);
   const int npe = mesh.nodes_per_element();
@@ -17,6 +29,7 @@ std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, 
   Eigen::VectorXd ue(dim * npe);
   for (int e = 0; e < mesh.n_elements(); ++e) {
     const int* v = mesh.element(e);
+    if (std::none_of(v, v + npe, [&prescribed](int node) { return prescribed[node]; })) continue;
     for (int i = 0; i < npe; ++i) {
       x[i] = mesh.nodes[v[i]];
       ue.segment(dim * i, dim) = displacement.segment(dim * v[i], dim);

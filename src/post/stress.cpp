@@ -23,6 +23,13 @@ void add_triangles(const Model& model, const Eigen::VectorXd& displacement, Stre
   Eigen::Matrix<double, 2, Eigen::Dynamic> X(2, npe), U(2, npe);
   std::vector<Eigen::Vector3d> nodes(npe);
   Eigen::VectorXd ue(2 * npe);
+  // The shape functions' reference gradients at each node, the same for every element.
+  std::vector<Eigen::Matrix<double, 2, Eigen::Dynamic>> dN(npe);
+  for (int i = 0; i < npe; ++i) {
+    const Eigen::Vector2d at = detail::reference_node(i);
+    dN[i] = detail::shape_gradients(mesh.order, at.x(), at.y());
+  }
+  Eigen::Matrix<double, 2, Eigen::Dynamic> dNX(2, npe);
   for (int e = 0; e < mesh.n_elements(); ++e) {
     const int* v = mesh.element(e);
     for (int i = 0; i < npe; ++i) {
@@ -37,10 +44,9 @@ void add_triangles(const Model& model, const Eigen::VectorXd& displacement, Stre
     const double area = std::abs(element_area(mesh, e));
     const double pressure = mixed ? law.bulk * element_mean_dilatation(nodes.data(), mesh.order, ue) : 0.0;
     for (int i = 0; i < npe; ++i) {
-      const Eigen::Vector2d at = detail::reference_node(i);
-      const Eigen::Matrix<double, 2, Eigen::Dynamic> dN = detail::shape_gradients(mesh.order, at.x(), at.y());
-      const Eigen::Matrix2d J = dN * X.transpose();                                 // J(r, c) = d x_c / d ξ_r
-      const Eigen::Matrix2d grad = (J.inverse() * dN * U.transpose()).transpose();  // grad(a, b) = d u_a / d x_b
+      const Eigen::Matrix2d J = dN[i] * X.transpose();  // J(r, c) = d x_c / d ξ_r
+      dNX.noalias() = J.inverse() * dN[i];
+      const Eigen::Matrix2d grad = (dNX * U.transpose()).transpose();  // grad(a, b) = d u_a / d x_b
       const Eigen::Vector3d strain(grad(0, 0), grad(1, 1), grad(0, 1) + grad(1, 0));
       Eigen::Vector4d s;
       s.head<3>() = D * strain;
@@ -63,6 +69,12 @@ void add_tetrahedra(const Model& model, const Eigen::VectorXd& displacement, Str
   const int npe = mesh.nodes_per_element();
   const std::vector<ElementLaw> laws = element_laws(model);
   Eigen::Matrix<double, 3, Eigen::Dynamic> X(3, npe), U(3, npe);
+  std::vector<Eigen::Matrix<double, 3, Eigen::Dynamic>> dN(npe);  // as in add_triangles
+  for (int i = 0; i < npe; ++i) {
+    const Eigen::Vector3d at = detail::reference_tetrahedron_node(i);
+    dN[i] = detail::tetrahedron_gradients(mesh.order, at.x(), at.y(), at.z());
+  }
+  Eigen::Matrix<double, 3, Eigen::Dynamic> dNX(3, npe);
   for (int e = 0; e < mesh.n_elements(); ++e) {
     const int* v = mesh.element(e);
     for (int i = 0; i < npe; ++i) {
@@ -72,11 +84,9 @@ void add_tetrahedra(const Model& model, const Eigen::VectorXd& displacement, Str
     const Eigen::Matrix<double, 6, 6> D = laws[body_of_element(model, e)].D;
     const double volume = std::abs(element_measure(mesh, e));
     for (int i = 0; i < npe; ++i) {
-      const Eigen::Vector3d at = detail::reference_tetrahedron_node(i);
-      const Eigen::Matrix<double, 3, Eigen::Dynamic> dN =
-          detail::tetrahedron_gradients(mesh.order, at.x(), at.y(), at.z());
-      const Eigen::Matrix3d J = dN * X.transpose();
-      const Eigen::Matrix3d grad = (J.inverse() * dN * U.transpose()).transpose();  // grad(a, b) = d u_a / d x_b
+      const Eigen::Matrix3d J = dN[i] * X.transpose();
+      dNX.noalias() = J.inverse() * dN[i];
+      const Eigen::Matrix3d grad = (dNX * U.transpose()).transpose();  // grad(a, b) = d u_a / d x_b
       Eigen::Matrix<double, 6, 1> strain;
       strain << grad(0, 0), grad(1, 1), grad(2, 2), grad(1, 2) + grad(2, 1), grad(0, 2) + grad(2, 0),
           grad(0, 1) + grad(1, 0);
