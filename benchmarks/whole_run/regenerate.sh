@@ -1,8 +1,10 @@
 #!/bin/sh
 # The whole-run benchmark (docs/whole-run.md): `contactqp solve` from process start to exit,
 # per phase, against one linear solve of the same K, on the Hertz half disc from 1e3 to 1.1e6
-# DOFs (benchmarks/scaling's levels; from level 4 on with body.mesh.refinements = 2) and the
-# Hertz sphere (benchmarks/scaling/results-3d's levels). Every run in its own process, one
+# DOFs (benchmarks/scaling's levels; levels 4-6 with body.mesh.refinements = 2, 7-8 with 3, so
+# that Gmsh meshes 5e3 to 2e4 triangles) and the Hertz sphere (benchmarks/scaling/results-3d's
+# levels, then scenes/hertz-sphere-large.json at 1.27e6 DOFs on its petsc backend under
+# mpirun -n 2, about 6 minutes and 7 GiB per rank). Every run in its own process, one
 # after the other, so the ratios of one run are comparable; the machine's other load is not
 # controlled (see the page).
 #
@@ -20,9 +22,11 @@ RUN="/usr/bin/python3 $SOURCE/benchmarks/whole_run/whole_run.py $BUILD/contactqp
 $RUN --label 2D "$LEVELS/hertz-level-0.json" "$LEVELS/hertz-level-1.json" "$LEVELS/hertz-level-2.json" \
   "$LEVELS/hertz-level-3.json"
 $RUN --label 2D --refinements 2 "$LEVELS/hertz-level-4.json" "$LEVELS/hertz-level-5.json" \
-  "$LEVELS/hertz-level-6.json" "$LEVELS/hertz-level-7.json" "$LEVELS/hertz-level-8.json"
+  "$LEVELS/hertz-level-6.json"
+$RUN --label 2D --refinements 3 "$LEVELS/hertz-level-7.json" "$LEVELS/hertz-level-8.json"
 $RUN --label 3D "$SPHERES/sphere-order1-cs0.01.json" "$SPHERES/sphere-order2-cs0.014.json" \
   "$SPHERES/sphere-order2-cs0.01.json" "$SPHERES/sphere-order1-cs0.0035.json"
+[ -n "${SKIP_LARGE:-}" ] || $RUN --label 3D --own-backend --ranks 2 "$SOURCE/scenes/hertz-sphere-large.json"
 # Before: a contactqp built from the commit before this benchmark (BEFORE=path), on the same
 # levels meshed by Gmsh directly, for the before/after table.
 if [ -n "${BEFORE:-}" ]; then
