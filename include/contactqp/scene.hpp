@@ -54,7 +54,8 @@ struct MeshSpec {
   int order =
       1;  // 1: linear (3-node triangles, 4-node tetrahedra), 2: quadratic (6-, 10-node); 0 for a mesh file: its elements decide
   double size_factor = 1;  // .geo files only: multiplies Gmsh's Mesh.MeshSizeFactor (all sizes), > 0
-  int refinements = 0;     // half_disc only: Gmsh meshes 2^n times larger sizes, each triangle then split in 4, n times
+  int refinements =
+      0;  // half_disc, hemisphere: Gmsh meshes 2^n times larger sizes, each element then split in 4 (8), n times
 };
 
 struct BodySpec {

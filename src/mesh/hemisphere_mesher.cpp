@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "gmsh_model.hpp"
+#include "refine.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -97,11 +98,32 @@ Mesh mesh_hemisphere(const HemisphereMeshRequest& request) {
 
   char distance[128];
   std::snprintf(distance, sizeof distance, "Max(0, Sqrt(x*x + y*y + z*z) - (%.17g))", unit_fine_radius(request));
-  set_graded_size_expression(unit_sizes(request), distance, request.volume_algorithm);
-  gmsh::option::setNumber("Mesh.ElementOrder", request.order);
+  // With refinements, Gmsh meshes sizes and grading 2ⁿ times larger (as the half disc): split
+  // n times, the coarse size function of the distance is the requested one again.
+  GradedSize sizes = unit_sizes(request);
+  const double coarsening = std::ldexp(1.0, request.refinements);
+  sizes.size *= coarsening;
+  sizes.contact_size *= coarsening;
+  sizes.grading *= coarsening;
+  set_graded_size_expression(sizes, distance, request.volume_algorithm);
+  gmsh::option::setNumber("Mesh.ElementOrder", request.refinements > 0 ? 1 : request.order);
   gmsh::model::mesh::generate(3);
   throw_if_gmsh_failed();
-  Mesh mesh = mesh_from_gmsh(request.radius);
+  Mesh mesh;
+  if (request.refinements == 0) {
+    mesh = mesh_from_gmsh(request.radius);
+  } else {
+    // Refined in units of R, where the sphere is the unit one about (0, 0, 1), then scaled.
+    // Projecting about the centre keeps a node of the top (z = 1) or of a symmetry plane
+    // (x = 0, y = 0) on it: the centre lies on all three, so a rim node stays on both faces.
+    const auto onto_sphere = [](const std::string& boundary, const Eigen::Vector3d& x) -> Eigen::Vector3d {
+      if (boundary != "surface") return x;
+      const Eigen::Vector3d centre(0.0, 0.0, 1.0);
+      return centre + (x - centre).normalized();
+    };
+    mesh = refine_tetrahedra(mesh_from_gmsh(1.0), request.refinements, request.order, onto_sphere);
+    for (Eigen::Vector3d& x : mesh.nodes) x *= request.radius;
+  }
   mesh.regions.clear();  // the generated body has no named regions
   return mesh;
 }

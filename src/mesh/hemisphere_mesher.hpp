@@ -23,6 +23,11 @@ struct HemisphereMeshRequest {
   double grading = 0.25;       // size growth per unit distance from the fine zone
   int order = 1;               // 1: 4-node tetrahedra; 2: 10-node (curved, mid-edge nodes on the sphere)
   double fine_radius = 0.1;    // length; 0 refines at the lowest point only
+  // Gmsh meshes sizes and grading 2^refinements times larger (4-node tetrahedra) and each
+  // tetrahedron is split into eight that many times, the new nodes of "surface" put back on
+  // the sphere, then mid-edge nodes added for order 2 (half_disc_mesher.hpp: Gmsh's 3D
+  // Delaunay takes most of a large run's mesh time). fine_radius is kept as it is.
+  int refinements = 0;
   VolumeAlgorithm volume_algorithm = VolumeAlgorithm::Delaunay;  // see graded_size.hpp
 };
 
@@ -32,7 +37,7 @@ struct HemisphereMeshRequest {
 // when Gmsh fails.
 Mesh mesh_hemisphere(const HemisphereMeshRequest& request);
 
-// The number of tetrahedra the request will give, within a factor of about 2, computed
+// The number of tetrahedra the request will give (refined ones too), within a factor of about 2, computed
 // without meshing (so that an oversized request can be refused before it takes the memory).
 double estimate_hemisphere_elements(const HemisphereMeshRequest& request);
 

@@ -1,35 +1,11 @@
 #include "refine.hpp"
 
-#include <cstdint>
 #include <stdexcept>
-#include <unordered_map>
+
+#include "edge_nodes.hpp"
 
 namespace contactqp::detail {
 namespace {
-
-// The mid-side node of each edge, made once: edges are keyed by their two end nodes.
-class EdgeNodes {
- public:
-  EdgeNodes(Mesh& mesh, std::size_t expected) : mesh_(mesh) { index_.reserve(expected); }
-
-  int operator()(int a, int b) {
-    const std::uint64_t key =
-        a < b ? (std::uint64_t(a) << 32 | std::uint32_t(b)) : (std::uint64_t(b) << 32 | std::uint32_t(a));
-    auto [it, inserted] = index_.emplace(key, mesh_.n_nodes());
-    if (inserted) mesh_.nodes.push_back(0.5 * (mesh_.nodes[a] + mesh_.nodes[b]));
-    return it->second;
-  }
-
- private:
-  Mesh& mesh_;
-  std::unordered_map<std::uint64_t, int> index_;
-};
-
-// Snaps the new node of each boundary edge onto its boundary.
-void snap_boundary_nodes(Mesh& mesh, const std::vector<std::pair<std::string, int>>& new_nodes,
-                         const SnapToBoundary& snap) {
-  for (const auto& [name, node] : new_nodes) mesh.nodes[node] = snap(name, mesh.nodes[node]);
-}
 
 Mesh split_once(const Mesh& coarse, const SnapToBoundary& snap) {
   Mesh fine;

@@ -157,6 +157,7 @@ Mesh mesh_hemisphere_body(const Scene& scene, double max_gap, const BuildOptions
   HemisphereMeshRequest request;
   request.radius = body.radius;
   copy_mesh_spec(body, request);
+  request.refinements = body.mesh.refinements;
   // The sphere's lower half seen from its lowest point: at horizontal distance r, direction θ.
   const double R = body.radius;
   auto surface = [R](double r, double angle) {

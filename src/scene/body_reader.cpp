@@ -145,9 +145,10 @@ BodySpec read_body(JsonObject body, const std::string& source, int dim) {
     read_mesh_file(body, spec, source);
   } else {
     spec.mesh = read_generated_mesh(body.object("mesh"), spec.formulation);
-    if (spec.mesh.refinements != 0 && spec.shape != "half_disc")
-      throw InputError(body.path_of("mesh.refinements"), "= " + std::to_string(spec.mesh.refinements) +
-                                                             ": only the half_disc shape is refined; remove the key");
+    if (spec.mesh.refinements != 0 && spec.shape != "half_disc" && spec.shape != "hemisphere")
+      throw InputError(body.path_of("mesh.refinements"),
+                       "= " + std::to_string(spec.mesh.refinements) +
+                           ": only the half_disc and hemisphere shapes are refined; remove the key");
     const bool round = spec.shape == "half_disc" || spec.shape == "hemisphere";
     const double extent =
         round ? spec.radius
