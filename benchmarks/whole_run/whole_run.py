@@ -9,7 +9,7 @@ the result JSON, the profile CSV and the ParaView file, as a user would; --phase
 peak memory of each phase) and with --no-contact (one factorisation and solve of the same K,
 the unit of cost). Both run under /usr/bin/time -v, so "wall" is the process from start to exit
 and "max_rss_mib" its peak resident memory. The phases come from the result JSON's timings.
---refinements N sets body.mesh.refinements = N in each half-disc scene (a copy written under
+--refinements N sets body.mesh.refinements = N in each half-disc or hemisphere scene (a copy under
 runs/ beside OUT.csv). --before: a contactqp from before --quiet, --phase-memory and the
 write phase (for the before/after table). --own-backend: the scene's own backend (the 3D scene
 at 1.27e6 DOFs, whose direct factor does not fit: petsc), under `mpirun -n N` with --ranks N;
@@ -76,7 +76,7 @@ def main():
     for scene_path in arguments.scenes:
         scene = json.load(open(scene_path))
         name = os.path.splitext(os.path.basename(scene_path))[0]
-        if arguments.refinements and scene["body"]["shape"] == "half_disc":
+        if arguments.refinements and scene["body"]["shape"] in ("half_disc", "hemisphere"):
             scene["body"]["mesh"]["refinements"] = arguments.refinements
             name += "-r%d" % arguments.refinements
             scene_path = os.path.join(work, name + ".json")

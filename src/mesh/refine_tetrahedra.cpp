@@ -1,4 +1,5 @@
 // Uniform refinement of 4-node tetrahedra (refine.hpp): each into eight, then mid-edge nodes.
+#include <array>
 #include <stdexcept>
 
 #include "edge_nodes.hpp"

@@ -25,7 +25,8 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   RankShare share;
   if (scene.solver.backend == Backend::Petsc && !options.no_contact && process_count() > 1) {
     start_petsc_runtime(scene.solver.petsc_options);  // MPI, with the user's options on PETSc's command line
-    share = RankShare{process_rank(), process_count()};
+    share.rank = process_rank();
+    share.ranks = process_count();
   }
   auto qp = std::make_shared<QuadraticProgram>(assemble_qp(*model, share));
 

@@ -151,7 +151,7 @@ TEST_CASE("K in rank shares: the shares of two ranks sum to the whole K, f stays
     INFO(scene);
     Model model = build_model(load_scene(source_path(scene)));
     const QuadraticProgram whole = assemble_qp(model);
-    const QuadraticProgram first = assemble_qp(model, RankShare{0, 2});
+    const QuadraticProgram first = assemble_qp(model, RankShare{0, 2, {}});
     const QuadraticProgram second = assemble_qp(model, RankShare{1, 2, first.distributed_row});
     CHECK_FALSE(whole.K_is_rank_share);
     CHECK(first.K_is_rank_share);
