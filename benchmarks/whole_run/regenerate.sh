@@ -2,7 +2,7 @@
 # The whole-run benchmark (docs/whole-run.md): `contactqp solve` from process start to exit,
 # per phase, against one linear solve of the same K, on the Hertz half disc from 1e3 to 1.1e6
 # DOFs (benchmarks/scaling's levels; levels 4-6 with body.mesh.refinements = 2, 7-8 with 3, so
-# that Gmsh meshes 5e3 to 2e4 triangles) and the Hertz sphere (benchmarks/scaling/results-3d's
+# that Gmsh meshes 1.5e3 to 1.7e4 triangles) and the Hertz sphere (benchmarks/scaling/results-3d's
 # levels as Gmsh meshes them, the 4-node one at 1.6e5 DOFs also with refinements = 1, then
 # scenes/hertz-sphere-large.json at 1.27e6 DOFs with refinements = 1 on its petsc backend under
 # mpirun -n 2, about 6 minutes and 7 GiB per rank). Every run in its own process, one
