@@ -65,6 +65,7 @@ void append_binary_block(std::string& out, const void* data, std::uint64_t bytes
             (n > 2 ? std::uint32_t(head[i + 2]) : 0),
         n);
   }
+  if (bytes <= used) return;  // an empty array (from may be null) or a one-byte one
   const std::uint64_t rest = bytes - used, full = rest / 3 * 3;
   const unsigned char* p = from + used;
   for (std::uint64_t i = 0; i < full; i += 3, p += 3)
