@@ -2,6 +2,7 @@
 // the elements and boundary faces that hold the edge (refine.cpp, refine_tetrahedra.cpp).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <unordered_map>
@@ -38,5 +39,13 @@ inline void snap_boundary_nodes(Mesh& mesh, const std::vector<std::pair<std::str
                                 const SnapToBoundary& snap) {
   for (const auto& [name, node] : new_nodes) mesh.nodes[node] = snap(name, mesh.nodes[node]);
 }
+
+// `linear` (order 1) as the order-2 mesh of the same elements: each element's vertices, then a
+// node at the middle of each of `edges` (pairs of local vertices, in the element type's order);
+// each boundary face's vertices, then its edges' middles (a segment's 01; a triangle's 01, 12,
+// 20), snapped onto their boundary. Regions and points as they were. `expected_edges` sizes
+// the edge table.
+Mesh with_mid_edge_nodes(const Mesh& linear, const std::vector<std::array<int, 2>>& edges, std::size_t expected_edges,
+                         const SnapToBoundary& snap);
 
 }  // namespace contactqp::detail

@@ -49,44 +49,16 @@ Mesh split_once(const Mesh& coarse, const SnapToBoundary& snap) {
   return fine;
 }
 
-// 3-node triangles to 6-node ones: vertices, then the mid-sides 01, 12, 20.
-Mesh add_mid_sides(const Mesh& linear, const SnapToBoundary& snap) {
-  Mesh quadratic;
-  quadratic.dim = 2;
-  quadratic.order = 2;
-  quadratic.nodes = linear.nodes;
-  const int n_elements = linear.n_elements();
-  quadratic.elements.reserve(6 * static_cast<std::size_t>(n_elements));
-  EdgeNodes mid(quadratic, 3 * static_cast<std::size_t>(n_elements) / 2 + 64);
-  for (int e = 0; e < n_elements; ++e) {
-    const int* v = linear.element(e);
-    const int m01 = mid(v[0], v[1]), m12 = mid(v[1], v[2]), m20 = mid(v[2], v[0]);
-    for (int node : {v[0], v[1], v[2], m01, m12, m20}) quadratic.elements.push_back(node);
-  }
-  std::vector<std::pair<std::string, int>> new_nodes;
-  for (const auto& [name, faces] : linear.boundaries) {
-    auto& out = quadratic.boundaries[name];
-    out.reserve(faces.size());
-    for (BoundaryFace face : faces) {
-      face.nodes[2] = mid(face.nodes[0], face.nodes[1]);
-      face.n_nodes = 3;
-      new_nodes.emplace_back(name, face.nodes[2]);
-      out.push_back(face);
-    }
-  }
-  snap_boundary_nodes(quadratic, new_nodes, snap);
-  quadratic.regions = linear.regions;
-  quadratic.points = linear.points;
-  return quadratic;
-}
-
 }  // namespace
 
 Mesh refine_triangles(const Mesh& mesh, int times, int order, const SnapToBoundary& snap) {
   if (mesh.dim != 2 || mesh.order != 1) throw std::runtime_error("refine_triangles: needs a mesh of 3-node triangles");
   Mesh refined = mesh;
   for (int k = 0; k < times; ++k) refined = split_once(refined, snap);
-  if (order == 2) refined = add_mid_sides(refined, snap);
+  // 6-node triangles: vertices, then the mid-sides 01, 12, 20.
+  if (order == 2)
+    refined = with_mid_edge_nodes(refined, {{0, 1}, {1, 2}, {2, 0}},
+                                  3 * static_cast<std::size_t>(refined.n_elements()) / 2 + 64, snap);
   orient(refined);  // checks every element too: a snapped node must not invert one
   return refined;
 }

@@ -93,38 +93,6 @@ Mesh split_once(const Mesh& coarse, const SnapToBoundary& snap) {
   return fine;
 }
 
-// 4-node tetrahedra to 10-node ones, boundary triangles to 6-node ones (vertices, then
-// mid-sides 01, 12, 20).
-Mesh add_mid_edges(const Mesh& linear, const SnapToBoundary& snap) {
-  Mesh quadratic;
-  quadratic.dim = 3;
-  quadratic.order = 2;
-  quadratic.nodes = linear.nodes;
-  const int n_elements = linear.n_elements();
-  quadratic.nodes.reserve(linear.nodes.size() + expected_edges(n_elements));
-  quadratic.elements.reserve(10 * static_cast<std::size_t>(n_elements));
-  EdgeNodes mid(quadratic, expected_edges(n_elements));
-  for (int e = 0; e < n_elements; ++e) {
-    const int* v = linear.element(e);
-    for (int k = 0; k < 4; ++k) quadratic.elements.push_back(v[k]);
-    for (const auto& edge : kEdges) quadratic.elements.push_back(mid(v[edge[0]], v[edge[1]]));
-  }
-  std::vector<std::pair<std::string, int>> new_nodes;
-  for (const auto& [name, faces] : linear.boundaries) {
-    auto& out = quadratic.boundaries[name];
-    out.reserve(faces.size());
-    for (BoundaryFace face : faces) {
-      list_face_nodes(name, face, mid, new_nodes, &face.nodes[3]);
-      face.n_nodes = 6;
-      out.push_back(face);
-    }
-  }
-  snap_boundary_nodes(quadratic, new_nodes, snap);
-  quadratic.regions = linear.regions;
-  quadratic.points = linear.points;
-  return quadratic;
-}
-
 }  // namespace
 
 Mesh refine_tetrahedra(const Mesh& mesh, int times, int order, const SnapToBoundary& snap) {
@@ -132,7 +100,11 @@ Mesh refine_tetrahedra(const Mesh& mesh, int times, int order, const SnapToBound
     throw std::runtime_error("refine_tetrahedra: needs a mesh of 4-node tetrahedra");
   Mesh refined = mesh;
   for (int k = 0; k < times; ++k) refined = split_once(refined, snap);
-  if (order == 2) refined = add_mid_edges(refined, snap);
+  if (order == 2) {
+    std::vector<std::array<int, 2>> edges;
+    for (const auto& edge : kEdges) edges.push_back({edge[0], edge[1]});
+    refined = with_mid_edge_nodes(refined, edges, expected_edges(refined.n_elements()), snap);
+  }
   orient(refined);  // checks every element too: a snapped node must not invert one
   return refined;
 }

@@ -18,11 +18,14 @@
 #include "../../src/mesh/gmsh_reader.hpp"
 #include "../../src/mesh/half_disc_mesher.hpp"
 #include "../../src/mesh/hemisphere_mesher.hpp"
+#include "../support/mesh_volume.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/mesh.hpp"
 
 using namespace contactqp;
 using namespace contactqp::detail;
+using contactqp::testing::isoparametric_volume;
+using contactqp::testing::total_volume;
 
 namespace {
 
@@ -47,31 +50,6 @@ class ScratchDirectory {
  private:
   std::filesystem::path path_;
 };
-
-double total_volume(const Mesh& mesh) {
-  double volume = 0;
-  for (int e = 0; e < mesh.n_elements(); ++e) volume += element_measure(mesh, e);
-  return volume;
-}
-
-// The volume of a curved 10-node mesh: det J of its isoparametric map integrated by the
-// 4-point rule. det J of a curved element is a polynomial of degree 3, so the rule is not
-// exact, but its error is far below the tolerance tested (only the surface layer is curved).
-double isoparametric_volume(const Mesh& mesh) {
-  const TetrahedronPoint* points;
-  const int n = tetrahedron_rule(2, points);
-  double volume = 0;
-  for (int e = 0; e < mesh.n_elements(); ++e) {
-    const int* v = mesh.element(e);
-    for (int q = 0; q < n; ++q) {
-      const auto dN = tetrahedron_gradients(2, points[q].xi, points[q].eta, points[q].zeta);
-      Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
-      for (int i = 0; i < 10; ++i) J += dN.col(i) * mesh.nodes[v[i]].transpose();
-      volume += points[q].weight * J.determinant();
-    }
-  }
-  return volume;
-}
 
 void check_no_defect(const Mesh& mesh) {
   const double largest = largest_element_measure(mesh);

@@ -13,40 +13,19 @@
 #include "../../src/fe/shape_functions.hpp"
 #include "../../src/mesh/hemisphere_mesher.hpp"
 #include "../../src/mesh/refine.hpp"
+#include "../support/mesh_volume.hpp"
 #include "contactqp/mesh.hpp"
 
 using namespace contactqp;
 using namespace contactqp::detail;
+using contactqp::testing::isoparametric_volume;
+using contactqp::testing::total_volume;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
 Eigen::Vector3d identity_snap(const std::string&, const Eigen::Vector3d& x) { return x; }
-
-double total_volume(const Mesh& mesh) {
-  double volume = 0;
-  for (int e = 0; e < mesh.n_elements(); ++e) volume += element_measure(mesh, e);
-  return volume;
-}
-
-// The volume of a curved 10-node mesh: det J integrated by the 4-point rule (not exact for
-// the curved surface layer, far below the tolerances used).
-double isoparametric_volume(const Mesh& mesh) {
-  const TetrahedronPoint* points;
-  const int n = tetrahedron_rule(2, points);
-  double volume = 0;
-  for (int e = 0; e < mesh.n_elements(); ++e) {
-    const int* v = mesh.element(e);
-    for (int q = 0; q < n; ++q) {
-      const auto dN = tetrahedron_gradients(2, points[q].xi, points[q].eta, points[q].zeta);
-      Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
-      for (int i = 0; i < 10; ++i) J += dN.col(i) * mesh.nodes[v[i]].transpose();
-      volume += points[q].weight * J.determinant();
-    }
-  }
-  return volume;
-}
 
 double face_area(const Mesh& mesh, const BoundaryFace& face) {
   const Eigen::Vector3d& a = mesh.nodes[face.nodes[0]];
