@@ -10,8 +10,8 @@
 #include <map>
 #include <string>
 
-#include "../src/qp/norms.hpp"
-#include "../src/qp/number_format.hpp"
+#include "qp/norms.hpp"
+#include "qp/number_format.hpp"
 #include "contactqp/qp.hpp"
 
 namespace contactqp::detail {

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "contactqp/qp.hpp"
-#include "petsc_bound_qp.hpp"
+#include "qp/petsc_bound_qp.hpp"
 
 namespace contactqp::detail {
 

@@ -17,7 +17,7 @@
 #include <cmath>
 #include <vector>
 
-#include "../src/qp/norms.hpp"
+#include "qp/norms.hpp"
 #include "backends.hpp"
 #include "cleanup.hpp"
 #include "contactqp/certificate.hpp"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <set>
 
-#include "../src/qp/norms.hpp"
+#include "qp/norms.hpp"
 #include "lcp.hpp"
 
 // LAPACK's Cholesky (OpenBLAS on Debian): S_AA of a thousand rows takes ~0.1 s with Eigen's

@@ -17,7 +17,7 @@
 #include <limits>
 #include <vector>
 
-#include "../src/qp/norms.hpp"
+#include "qp/norms.hpp"
 #include "backend_options.hpp"
 #include "backends.hpp"
 #include "contactqp/certificate.hpp"

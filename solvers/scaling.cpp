@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "../src/qp/norms.hpp"
+#include "qp/norms.hpp"
 #include "contactqp/linear_solver.hpp"
 #include "contactqp/processes.hpp"
 

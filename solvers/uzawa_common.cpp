@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "../src/qp/norms.hpp"
-#include "../src/qp/number_format.hpp"
+#include "qp/norms.hpp"
+#include "qp/number_format.hpp"
 #include "contactqp/certificate.hpp"
 
 namespace contactqp::detail {

@@ -20,7 +20,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "../../src/qp/number_format.hpp"
+#include "qp/number_format.hpp"
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/io.hpp"

@@ -10,7 +10,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "../../src/qp/number_format.hpp"
+#include "qp/number_format.hpp"
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/io.hpp"

@@ -26,7 +26,7 @@
 #include <map>
 #include <sstream>
 
-#include "../../src/qp/number_format.hpp"
+#include "qp/number_format.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"

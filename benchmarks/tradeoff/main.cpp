@@ -29,8 +29,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "../../src/qp/norms.hpp"
-#include "../../src/qp/number_format.hpp"
+#include "qp/norms.hpp"
+#include "qp/number_format.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "../qp/number_format.hpp"
+#include "qp/number_format.hpp"
 #include "contactqp/io.hpp"
 
 namespace CLI {

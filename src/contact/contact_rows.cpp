@@ -3,7 +3,7 @@
 #include <limits>
 #include <map>
 
-#include "../fe/shape_functions.hpp"
+#include "fe/shape_functions.hpp"
 #include "contact.hpp"
 #include "contactqp/errors.hpp"
 

@@ -11,7 +11,7 @@
 #include <map>
 #include <optional>
 
-#include "../fe/shape_functions.hpp"
+#include "fe/shape_functions.hpp"
 #include "contact.hpp"
 
 namespace contactqp::detail {

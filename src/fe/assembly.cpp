@@ -3,8 +3,8 @@
 #include <cmath>
 #include <limits>
 
-#include "../contact/contact.hpp"
-#include "../model/rigid_body_modes.hpp"
+#include "contact/contact.hpp"
+#include "model/rigid_body_modes.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/model.hpp"
 #include "rank_share.hpp"

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "../model/model_parts.hpp"
+#include "model/model_parts.hpp"
 #include "contactqp/errors.hpp"
 #include "shape_functions.hpp"
 

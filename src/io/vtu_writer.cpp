@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "../contact/contact.hpp"
+#include "contact/contact.hpp"
 #include "contactqp/io.hpp"
 
 namespace contactqp {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "../contact/contact.hpp"
+#include "contact/contact.hpp"
 #include "contactqp/errors.hpp"
 #include "model_parts.hpp"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "../contact/contact.hpp"
+#include "contact/contact.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/mesh_file.hpp"
 #include "model_parts.hpp"

@@ -16,7 +16,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "../qp/number_format.hpp"
+#include "qp/number_format.hpp"
 #include "contactqp/errors.hpp"
 #include "model_parts.hpp"
 

@@ -2,7 +2,7 @@
 #include <cmath>
 #include <map>
 
-#include "../contact/contact.hpp"
+#include "contact/contact.hpp"
 #include "contactqp/post.hpp"
 
 namespace contactqp {

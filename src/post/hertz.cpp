@@ -10,7 +10,7 @@
 
 #include <Eigen/SVD>
 
-#include "../contact/contact.hpp"
+#include "contact/contact.hpp"
 #include "contactqp/post.hpp"
 
 namespace contactqp {

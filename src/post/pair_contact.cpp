@@ -6,7 +6,7 @@
 #include <map>
 #include <vector>
 
-#include "../contact/contact.hpp"
+#include "contact/contact.hpp"
 #include "contactqp/post.hpp"
 
 namespace contactqp {

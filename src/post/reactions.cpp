@@ -1,7 +1,7 @@
 // Support reactions: what the prescribed displacements push with.
 #include <algorithm>
 
-#include "../contact/contact.hpp"
+#include "contact/contact.hpp"
 #include "contactqp/post.hpp"
 
 namespace contactqp {

@@ -3,7 +3,7 @@
 #include <Eigen/LU>
 #include <cmath>
 
-#include "../fe/shape_functions.hpp"
+#include "fe/shape_functions.hpp"
 #include "contactqp/post.hpp"
 
 namespace contactqp {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "../qp/norms.hpp"
+#include "qp/norms.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"

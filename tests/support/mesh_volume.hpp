@@ -3,7 +3,7 @@
 
 #include <Eigen/Dense>  // determinant()
 
-#include "../../src/fe/shape_functions.hpp"
+#include "fe/shape_functions.hpp"
 #include "contactqp/mesh.hpp"
 
 namespace contactqp::testing {

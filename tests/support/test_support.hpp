@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "../../src/qp/norms.hpp"
+#include "qp/norms.hpp"
 #include "contactqp/post.hpp"
 #include "contactqp/qp.hpp"
 #include "contactqp/scene.hpp"

@@ -5,7 +5,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "../../src/fe/shape_functions.hpp"
+#include "fe/shape_functions.hpp"
 #include "contactqp/model.hpp"
 
 using namespace contactqp;

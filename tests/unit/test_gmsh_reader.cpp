@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "../../src/mesh/gmsh_reader.hpp"
+#include "mesh/gmsh_reader.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/model.hpp"
 #include "test_support.hpp"

@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "../../src/model/model_parts.hpp"
+#include "model/model_parts.hpp"
 #include "contactqp/model.hpp"
 #include "test_support.hpp"
 

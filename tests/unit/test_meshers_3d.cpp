@@ -12,13 +12,13 @@
 #include <fstream>
 #include <set>
 
-#include "../../src/fe/shape_functions.hpp"
-#include "../../src/mesh/box_mesher.hpp"
-#include "../../src/mesh/gmsh_model.hpp"
-#include "../../src/mesh/gmsh_reader.hpp"
-#include "../../src/mesh/half_disc_mesher.hpp"
-#include "../../src/mesh/hemisphere_mesher.hpp"
-#include "../support/mesh_volume.hpp"
+#include "fe/shape_functions.hpp"
+#include "mesh/box_mesher.hpp"
+#include "mesh/gmsh_model.hpp"
+#include "mesh/gmsh_reader.hpp"
+#include "mesh/half_disc_mesher.hpp"
+#include "mesh/hemisphere_mesher.hpp"
+#include "mesh_volume.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/mesh.hpp"
 

@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "../../src/contact/contact.hpp"
+#include "contact/contact.hpp"
 #include "contactqp/scene.hpp"
 
 using namespace contactqp;

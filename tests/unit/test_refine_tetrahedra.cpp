@@ -10,10 +10,10 @@
 #include <random>
 #include <set>
 
-#include "../../src/fe/shape_functions.hpp"
-#include "../../src/mesh/hemisphere_mesher.hpp"
-#include "../../src/mesh/refine.hpp"
-#include "../support/mesh_volume.hpp"
+#include "fe/shape_functions.hpp"
+#include "mesh/hemisphere_mesher.hpp"
+#include "mesh/refine.hpp"
+#include "mesh_volume.hpp"
 #include "contactqp/mesh.hpp"
 
 using namespace contactqp;
