@@ -10,9 +10,9 @@
 #include <map>
 #include <string>
 
+#include "contactqp/qp.hpp"
 #include "qp/norms.hpp"
 #include "qp/number_format.hpp"
-#include "contactqp/qp.hpp"
 
 namespace contactqp::detail {
 

@@ -17,10 +17,10 @@
 #include <cmath>
 #include <vector>
 
-#include "qp/norms.hpp"
 #include "backends.hpp"
 #include "cleanup.hpp"
 #include "contactqp/certificate.hpp"
+#include "qp/norms.hpp"
 
 namespace contactqp::detail {
 namespace {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <set>
 
-#include "qp/norms.hpp"
 #include "lcp.hpp"
+#include "qp/norms.hpp"
 
 // LAPACK's Cholesky (OpenBLAS on Debian): S_AA of a thousand rows takes ~0.1 s with Eigen's
 // portable kernels and a few times less with OpenBLAS's, once per active-set step.

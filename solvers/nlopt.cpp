@@ -17,11 +17,11 @@
 #include <limits>
 #include <vector>
 
-#include "qp/norms.hpp"
 #include "backend_options.hpp"
 #include "backends.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
+#include "qp/norms.hpp"
 
 namespace contactqp::detail {
 namespace {

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "qp/norms.hpp"
 #include "contactqp/linear_solver.hpp"
 #include "contactqp/processes.hpp"
+#include "qp/norms.hpp"
 
 namespace contactqp::detail {
 namespace {

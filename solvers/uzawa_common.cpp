@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contactqp/certificate.hpp"
 #include "qp/norms.hpp"
 #include "qp/number_format.hpp"
-#include "contactqp/certificate.hpp"
 
 namespace contactqp::detail {
 namespace {

@@ -20,13 +20,13 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "qp/number_format.hpp"
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/io.hpp"
 #include "contactqp/model.hpp"
 #include "contactqp/solve.hpp"
 #include "context.hpp"
+#include "qp/number_format.hpp"
 
 using namespace contactqp;
 

@@ -10,7 +10,6 @@
 #include <iostream>
 #include <sstream>
 
-#include "qp/number_format.hpp"
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/io.hpp"
@@ -18,6 +17,7 @@
 #include "contactqp/timer.hpp"
 #include "context.hpp"
 #include "hertz_levels.hpp"
+#include "qp/number_format.hpp"
 
 using namespace contactqp;
 using namespace contactqp::bench;

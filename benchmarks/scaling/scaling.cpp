@@ -26,7 +26,6 @@
 #include <map>
 #include <sstream>
 
-#include "qp/number_format.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"
@@ -35,6 +34,7 @@
 #include "contactqp/solve.hpp"
 #include "context.hpp"
 #include "hertz_levels.hpp"
+#include "qp/number_format.hpp"
 
 using namespace contactqp;
 using namespace contactqp::bench;

@@ -29,8 +29,6 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "qp/norms.hpp"
-#include "qp/number_format.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"
@@ -41,6 +39,8 @@
 #include "context.hpp"
 #include "peer_mesh.hpp"
 #include "pressure_difference.hpp"
+#include "qp/norms.hpp"
+#include "qp/number_format.hpp"
 
 using namespace contactqp;
 

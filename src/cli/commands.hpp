@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "qp/number_format.hpp"
 #include "contactqp/io.hpp"
+#include "qp/number_format.hpp"
 
 namespace CLI {
 class App;

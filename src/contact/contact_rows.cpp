@@ -3,9 +3,9 @@
 #include <limits>
 #include <map>
 
-#include "fe/shape_functions.hpp"
 #include "contact.hpp"
 #include "contactqp/errors.hpp"
+#include "fe/shape_functions.hpp"
 
 namespace contactqp::detail {
 

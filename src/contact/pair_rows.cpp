@@ -11,8 +11,8 @@
 #include <map>
 #include <optional>
 
-#include "fe/shape_functions.hpp"
 #include "contact.hpp"
+#include "fe/shape_functions.hpp"
 
 namespace contactqp::detail {
 namespace {

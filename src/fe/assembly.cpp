@@ -4,9 +4,9 @@
 #include <limits>
 
 #include "contact/contact.hpp"
-#include "model/rigid_body_modes.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/model.hpp"
+#include "model/rigid_body_modes.hpp"
 #include "rank_share.hpp"
 #include "stiffness_matrix.hpp"
 

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <limits>
 
-#include "model/model_parts.hpp"
 #include "contactqp/errors.hpp"
+#include "model/model_parts.hpp"
 #include "shape_functions.hpp"
 
 namespace contactqp::detail {

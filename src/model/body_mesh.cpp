@@ -6,13 +6,13 @@
 #include <limits>
 
 #include "contact/contact.hpp"
+#include "contactqp/errors.hpp"
 #include "mesh/box_mesher.hpp"
 #include "mesh/gmsh_model.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/half_disc_mesher.hpp"
 #include "mesh/hemisphere_mesher.hpp"
 #include "mesh/rectangle_mesher.hpp"
-#include "contactqp/errors.hpp"
 #include "model_parts.hpp"
 
 namespace contactqp::detail {

@@ -2,9 +2,9 @@
 // once the mesh is read: only then are its physical groups known.
 #include <cmath>
 
-#include "scene/json_reader.hpp"
 #include "contactqp/errors.hpp"
 #include "model_parts.hpp"
+#include "scene/json_reader.hpp"
 
 namespace contactqp::detail {
 namespace {

@@ -16,9 +16,9 @@
 #include <cmath>
 #include <numeric>
 
-#include "qp/number_format.hpp"
 #include "contactqp/errors.hpp"
 #include "model_parts.hpp"
+#include "qp/number_format.hpp"
 
 namespace contactqp::detail {
 namespace {

@@ -3,8 +3,8 @@
 #include <Eigen/LU>
 #include <cmath>
 
-#include "fe/shape_functions.hpp"
 #include "contactqp/post.hpp"
+#include "fe/shape_functions.hpp"
 
 namespace contactqp {
 namespace {

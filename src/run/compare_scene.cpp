@@ -5,12 +5,12 @@
 #include <cmath>
 #include <limits>
 
-#include "qp/norms.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/run.hpp"
 #include "contactqp/solve.hpp"
+#include "qp/norms.hpp"
 
 namespace contactqp {
 namespace {

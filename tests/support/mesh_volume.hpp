@@ -3,8 +3,8 @@
 
 #include <Eigen/Dense>  // determinant()
 
-#include "fe/shape_functions.hpp"
 #include "contactqp/mesh.hpp"
+#include "fe/shape_functions.hpp"
 
 namespace contactqp::testing {
 

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "qp/norms.hpp"
 #include "contactqp/post.hpp"
 #include "contactqp/qp.hpp"
 #include "contactqp/scene.hpp"
+#include "qp/norms.hpp"
 
 namespace contactqp::testing {
 

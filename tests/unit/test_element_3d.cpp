@@ -5,8 +5,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "fe/shape_functions.hpp"
 #include "contactqp/model.hpp"
+#include "fe/shape_functions.hpp"
 
 using namespace contactqp;
 

@@ -5,9 +5,9 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "mesh/gmsh_reader.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/model.hpp"
+#include "mesh/gmsh_reader.hpp"
 #include "test_support.hpp"
 
 using namespace contactqp;

@@ -3,8 +3,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "model/model_parts.hpp"
 #include "contactqp/model.hpp"
+#include "model/model_parts.hpp"
 #include "test_support.hpp"
 
 using namespace contactqp;

@@ -12,6 +12,8 @@
 #include <fstream>
 #include <set>
 
+#include "contactqp/errors.hpp"
+#include "contactqp/mesh.hpp"
 #include "fe/shape_functions.hpp"
 #include "mesh/box_mesher.hpp"
 #include "mesh/gmsh_model.hpp"
@@ -19,8 +21,6 @@
 #include "mesh/half_disc_mesher.hpp"
 #include "mesh/hemisphere_mesher.hpp"
 #include "mesh_volume.hpp"
-#include "contactqp/errors.hpp"
-#include "contactqp/mesh.hpp"
 
 using namespace contactqp;
 using namespace contactqp::detail;

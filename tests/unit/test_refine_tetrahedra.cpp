@@ -10,11 +10,11 @@
 #include <random>
 #include <set>
 
+#include "contactqp/mesh.hpp"
 #include "fe/shape_functions.hpp"
 #include "mesh/hemisphere_mesher.hpp"
 #include "mesh/refine.hpp"
 #include "mesh_volume.hpp"
-#include "contactqp/mesh.hpp"
 
 using namespace contactqp;
 using namespace contactqp::detail;
