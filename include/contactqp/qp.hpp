@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "contactqp/friction.hpp"
 #include "contactqp/linear_solver.hpp"
 #include "contactqp/timer.hpp"
 
@@ -49,6 +50,8 @@ struct QuadraticProgram {
   // the DOFs of each part of a mesh partition together, so that each rank's block of rows is a
   // compact piece of the body. Empty: the DOFs' own order.
   std::vector<int> distributed_row;
+  // Friction at the contact rows (friction.hpp): empty (law None) for a frictionless problem.
+  FrictionBlock friction;
 
   int n_dofs() const { return static_cast<int>(K.rows()); }
   int n_constraints() const { return static_cast<int>(B.rows()); }
@@ -146,6 +149,8 @@ struct SolveResult {
   Status status = Status::NumericalError;          // pessimistic until a backend says otherwise
   std::string message = "solve() was not called";  // why it stopped, one sentence
   VectorXd u, lambda;                              // λ ≥ 0, compression positive; always finite
+  // Tangential multipliers (friction.hpp), m · n_directions; empty for a frictionless problem.
+  VectorXd lambda_t;
   int iterations = 0;
   Timings timings;                            // seconds per phase ("factorize", "solve", ...)
   std::map<std::string, double> diagnostics;  // named extras: "rho", "rho_max", ...

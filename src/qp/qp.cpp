@@ -46,6 +46,30 @@ Backend parse_backend(const std::string& name, const std::string& field) {
   throw InputError(field, "= \"" + name + "\": unknown backend; valid: " + valid);
 }
 
+std::string to_string(FrictionLaw law) {
+  switch (law) {
+    case FrictionLaw::None:
+      return "none";
+    case FrictionLaw::Tresca:
+      return "tresca";
+    case FrictionLaw::Coulomb:
+      return "coulomb";
+  }
+  return "unknown";
+}
+
+std::string to_string(ProblemKind kind) {
+  switch (kind) {
+    case ProblemKind::Frictionless:
+      return "frictionless";
+    case ProblemKind::Tresca:
+      return "tresca";
+    case ProblemKind::Coulomb:
+      return "coulomb";
+  }
+  return "unknown";
+}
+
 std::string to_string(Status status) {
   switch (status) {
     case Status::Converged:
