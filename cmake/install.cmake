@@ -8,7 +8,11 @@
 include(CMakePackageConfigHelpers)
 set(CONTACTQP_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/contactqp)
 
-install(TARGETS cqp_qp cqp_solvers cqp_fe cqp_run contactqp_library
+set(CONTACTQP_LIBRARIES cqp_qp cqp_solvers cqp_fe cqp_run contactqp_library)
+if(CONTACTQP_WITH_PETSC)
+  list(APPEND CONTACTQP_LIBRARIES cqp_distributed)
+endif()
+install(TARGETS ${CONTACTQP_LIBRARIES}
         EXPORT contactqpTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -34,8 +38,11 @@ endif()
 if(CONTACTQP_HAVE_NLOPT)
   string(APPEND CONTACTQP_PC_REQUIRES " nlopt")
 endif()
+set(CONTACTQP_PC_LIBS "-lcqp_run -lcqp_fe -lcqp_solvers -lcqp_qp")
 if(CONTACTQP_WITH_PETSC)
   string(APPEND CONTACTQP_PC_REQUIRES " PETSc ompi-cxx")
+  # cqp_run calls the distributed run (cqp_distributed), which needs cqp_fe after it.
+  set(CONTACTQP_PC_LIBS "-lcqp_run -lcqp_distributed -lcqp_fe -lcqp_solvers -lcqp_qp")
 endif()
 # Relocatable: the prefix is found from the .pc file's own place, so `--prefix P` at install
 # time works (libdir is lib, or lib/<multiarch> under /usr).

@@ -21,6 +21,7 @@
 // keeps full precision near the optimum where r is tiny.
 #pragma once
 
+#include <limits>
 #include <string>
 
 #include "contactqp/qp.hpp"
@@ -51,5 +52,25 @@ Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorX
 // The scales above, exposed so that backends' stopping rules measure the same things.
 double force_scale(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda);
 double length_scale(const QuadraticProgram& qp, const VectorXd& u);
+
+// What the certificate's formulas read of (qp, u, λ): maxima and sums over the entries. A
+// caller that holds u, λ and the rows of K, f, B and g in pieces (one per MPI rank,
+// src/distributed/) takes each maximum and sum over the pieces, and gets from
+// certificate_from() the certificate certify() gives for the whole.
+struct CertificateTerms {
+  double f_max = 0, Ku_max = 0, Btl_max = 0;  // ‖f‖∞, ‖Ku‖∞, ‖Bᵀλ‖∞
+  double u_max = 0, Bu_max = 0;               // ‖u‖∞, ‖Bu‖∞
+  double stationarity_max = 0;                // ‖Ku − f + Bᵀλ‖∞
+  double violation_max = 0;                   // max(0, max_i (Bu − g)_i)
+  double negative_max = 0;                    // max(0, −min_i λ_i)
+  double lambda_max = 0;                      // ‖λ‖∞
+  double complementarity_max = 0;             // max_i |λ_i (Bu − g)_i|
+  double uKu = 0, fu = 0, lambda_slack = 0;   // uᵀKu, fᵀu, λᵀ(Bu − g)
+  // rᵀK⁻¹r for the stationarity residual r (one solve with K); NaN when no solver of K is at
+  // hand or it failed: θ and the gap are then not available.
+  double r_K_inverse_r = std::numeric_limits<double>::quiet_NaN();
+};
+CertificateTerms certificate_terms(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda);
+Certificate certificate_from(const CertificateTerms& terms);
 
 }  // namespace contactqp

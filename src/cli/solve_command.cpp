@@ -7,6 +7,7 @@
 #include "contactqp/errors.hpp"
 #include "contactqp/processes.hpp"
 #include "contactqp/run.hpp"
+#include "distributed/run_distributed.hpp"
 #include "phase_memory.hpp"
 #include "progress.hpp"
 
@@ -73,12 +74,24 @@ int run_solve(const SolveArguments& arguments) {
   RunOptions options;
   options.build.max_elements = arguments.max_elements;
   options.no_contact = arguments.no_contact;
+  options.distributed = arguments.distributed;
+  // A distributed run writes its ParaView file in pieces, one per process, joined by a .pvtu.
+  const bool distributed = detail::runs_distributed(scene, options);
+  const bool parallel_file =
+      arguments.vtu_path.size() > 5 && arguments.vtu_path.compare(arguments.vtu_path.size() - 5, 5, ".pvtu") == 0;
+  if (!arguments.vtu_path.empty() && distributed != parallel_file)
+    throw InputError("--vtu",
+                     "= " + arguments.vtu_path +
+                         (distributed ? ": a distributed run (petsc under mpirun) writes one piece per process, "
+                                        "joined by a .pvtu file: name one"
+                                      : ": a .pvtu file is written by a distributed run (petsc under mpirun); "
+                                        "name a .vtu file"));
   RunReport report;
   std::string memory_line;
+  // Under mpirun rank 0 alone shows progress, prints and writes the result files; in a
+  // distributed run every rank writes its piece of the ParaView file.
+  const bool writer = process_rank() == 0;
   {
-    // Under mpirun every rank holds the whole result: rank 0 alone shows progress, prints and
-    // writes the files.
-    const bool writer = process_rank() == 0;
     ProgressLine progress(!arguments.quiet && writer);
     PhaseMemory memory;
     options.on_phase = [&progress, &memory, &arguments](const char* phase) {
@@ -86,18 +99,23 @@ int run_solve(const SolveArguments& arguments) {
       if (arguments.phase_memory) memory.start(phase);
     };
     report = run_scene(scene, options);
-    if (!writer) return report.result.status == Status::Converged ? 0 : 1;
     // The output files: the CSV and the ParaView file, timed as "write", then the JSON, which
     // records that time.
     progress.set("write", 0);
     if (arguments.phase_memory) memory.start("write");
     Stopwatch clock;
+    if (report.write_pieces && !arguments.vtu_path.empty()) report.write_pieces(arguments.vtu_path);
+    if (!writer) {
+      // Each rank's own peaks, one line each (what a rank holds is the point of a distributed run).
+      if (arguments.phase_memory) std::cerr << memory.finish(" (rank " + std::to_string(process_rank()) + ")");
+      return report.result.status == Status::Converged ? 0 : 1;
+    }
     const std::pair<const std::string*, std::string (*)(const RunReport&)> files[] = {
         {&arguments.csv_path, profile_csv}, {&arguments.vtu_path, vtu_document}};
     const int n_files = !arguments.json_path.empty() + !arguments.csv_path.empty() + !arguments.vtu_path.empty();
-    int written = 0;
+    int written = report.write_pieces && !arguments.vtu_path.empty();
     for (const auto& [path, document] : files) {
-      if (path->empty()) continue;
+      if (path->empty() || (report.write_pieces && path == &arguments.vtu_path)) continue;
       write_file_atomically(*path, document(report));
       progress.set("write", static_cast<double>(++written) / n_files);
     }
@@ -163,6 +181,9 @@ void add_solve_command(CLI::App& app, int& exit_status) {
   command->add_flag("--quiet", arguments->quiet, "No progress line on stderr (shown on a terminal after 2 s)");
   command->add_option("--ordering", arguments->ordering, "Fill-reducing ordering of K: amd (default), metis or auto");
   add_linear_solver_options(*command, *arguments);
+  command->add_flag("--distributed", arguments->distributed,
+                    "Each process holds only its part of the mesh, model and output (petsc backend; under mpirun "
+                    "anyway): for a one-process run of the distributed path");
   command->add_flag("--no-contact", arguments->no_contact,
                     "Drop the contact rows: one linear solve of the same K (the reference for timings)");
   command->callback([arguments, tol, max_iterations, &exit_status] {

@@ -27,7 +27,7 @@ void check_output_path(const std::string& path, const std::string& field) {
     throw InputError(field, "= " + path + ": directory " + directory.string() + " is not writable");
 }
 
-void write_file_atomically(const std::string& path, const std::string& content) {
+std::string write_temporary_file(const std::string& path, const std::string& content) {
   const fs::path target(path);
   fs::path directory = target.parent_path();
   if (directory.empty()) directory = ".";
@@ -52,11 +52,21 @@ void write_file_atomically(const std::string& path, const std::string& content) 
     ::unlink(temporary.c_str());
     throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
   }
+  return temporary;
+}
+
+void commit_temporary_file(const std::string& temporary, const std::string& path) {
   if (std::rename(temporary.c_str(), path.c_str()) != 0) {
     const std::string reason = std::strerror(errno);
     ::unlink(temporary.c_str());
     throw std::runtime_error("cannot rename the result into " + path + ": " + reason);
   }
+}
+
+void discard_temporary_file(const std::string& temporary) { ::unlink(temporary.c_str()); }
+
+void write_file_atomically(const std::string& path, const std::string& content) {
+  commit_temporary_file(write_temporary_file(path, content), path);
 }
 
 }  // namespace contactqp

@@ -8,6 +8,19 @@
 
 namespace contactqp::detail {
 
+Eigen::MatrixXd rigid_motions_at(int dim, const Eigen::Vector3d& position, const Eigen::Vector3d& centroid,
+                                 double extent) {
+  const Eigen::Vector3d x = (position - centroid) / extent;
+  Eigen::MatrixXd global(dim, dim == 2 ? 3 : 6);
+  if (dim == 2) {
+    global << 1, 0, -x.y(), 0, 1, x.x();
+  } else {
+    // Translations, then rotations about x, y, z: ω × x.
+    global << 1, 0, 0, 0, x.z(), -x.y(), 0, 1, 0, -x.z(), 0, x.x(), 0, 0, 1, x.y(), -x.x(), 0;
+  }
+  return global;
+}
+
 Eigen::MatrixXd rigid_body_modes(const Model& model) {
   const Mesh& mesh = model.mesh;
   const int n_nodes = mesh.n_nodes();
@@ -21,15 +34,8 @@ Eigen::MatrixXd rigid_body_modes(const Model& model) {
   if (!(extent > 0)) extent = 1;
 
   Eigen::MatrixXd modes = Eigen::MatrixXd::Zero(model.n_free, n_modes);
-  Eigen::MatrixXd global(dim, n_modes);  // the motions at one node, global axes
   for (int node = 0; node < n_nodes; ++node) {
-    const Eigen::Vector3d x = (mesh.nodes[node] - centroid) / extent;
-    if (dim == 2) {
-      global << 1, 0, -x.y(), 0, 1, x.x();
-    } else {
-      // Translations, then rotations about x, y, z: ω × x.
-      global << 1, 0, 0, 0, x.z(), -x.y(), 0, 1, 0, -x.z(), 0, x.x(), 0, 0, 1, x.y(), -x.x(), 0;
-    }
+    const Eigen::MatrixXd global = rigid_motions_at(dim, mesh.nodes[node], centroid, extent);
     // Component c of a node's DOFs is along column c of its frame T: the value is (Tᵀ m)_c.
     const Eigen::MatrixXd local = dof_frame(model, node).transpose() * global;
     for (int c = 0; c < dim; ++c) {
