@@ -30,23 +30,35 @@ void per_node(const DistributedModel& model, const DistributedBoundQp& qp, doubl
   }
 }
 
+// Free-DOF values (own free DOFs, local free order) into and out of a vector in A's rows
+// (the prescribed DOFs' rows 0).
+void to_rows(const DistributedModel& model, const Eigen::VectorXd& free, Vec rows) {
+  VecSet(rows, 0.0);
+  PetscScalar* values = nullptr;
+  VecGetArray(rows, &values);
+  for (int k = 0; k < model.n_own_dofs; ++k) values[model.local_row(k)] = free[k];
+  VecRestoreArray(rows, &values);
+}
+
+Eigen::VectorXd from_rows(const DistributedModel& model, Vec rows) {
+  Eigen::VectorXd free(model.n_own_dofs);
+  const PetscScalar* values = nullptr;
+  VecGetArrayRead(rows, &values);
+  for (int k = 0; k < model.n_own_dofs; ++k) free[k] = values[model.local_row(k)];
+  VecRestoreArrayRead(rows, &values);
+  return free;
+}
+
 // K u on the own rows from u: Tᵀ A T u (A v, with v = T u at the candidate nodes).
 Eigen::VectorXd K_times_u(const DistributedModel& model, const DistributedBoundQp& qp, const Eigen::VectorXd& u) {
   Vec v = nullptr, y = nullptr;
   check(MatCreateVecs(qp.A, &v, &y), "MatCreateVecs");
-  PetscScalar* values = nullptr;
-  VecGetArray(v, &values);
-  std::copy(u.data(), u.data() + u.size(), values);
-  per_node(model, qp, values, [](const NodeTransform& t) -> const Eigen::MatrixXd& { return t.T; });
-  VecRestoreArray(v, &values);
+  Eigen::VectorXd Tu = u;
+  per_node(model, qp, Tu.data(), [](const NodeTransform& t) -> const Eigen::MatrixXd& { return t.T; });
+  to_rows(model, Tu, v);
   const PetscErrorCode code = MatMult(qp.A, v, y);
-  Eigen::VectorXd Ku(u.size());
-  if (!code) {
-    VecGetArray(y, &values);
-    per_node(model, qp, values, [](const NodeTransform& t) { return Eigen::MatrixXd(t.T.transpose()); });
-    std::copy(values, values + Ku.size(), Ku.data());
-    VecRestoreArray(y, &values);
-  }
+  Eigen::VectorXd Ku = code ? Eigen::VectorXd::Zero(u.size()) : from_rows(model, y);
+  per_node(model, qp, Ku.data(), [](const NodeTransform& t) { return Eigen::MatrixXd(t.T.transpose()); });
   VecDestroy(&v);
   VecDestroy(&y);
   check(code, "MatMult");
@@ -59,8 +71,7 @@ CertificateTerms row_terms(const DistributedModel& model, const DistributedBound
                            Eigen::VectorXd* stationarity) {
   const Model& local = model.local;
   CertificateTerms t;
-  const PetscScalar* f = nullptr;
-  VecGetArrayRead(qp.f, &f);
+  const Eigen::VectorXd f = from_rows(model, qp.f);
   Eigen::VectorXd Btl = Eigen::VectorXd::Zero(u.size());
   for (int i = 0; i < model.n_own_candidates; ++i) {
     const ContactRowEntries row = contact_row(local, local.candidates[i]);
@@ -89,7 +100,6 @@ CertificateTerms row_terms(const DistributedModel& model, const DistributedBound
     t.uKu += u[k] * Ku[k];
     t.fu += f[k] * u[k];
   }
-  VecRestoreArrayRead(qp.f, &f);
   return t;
 }
 
@@ -118,11 +128,7 @@ Eigen::VectorXd as_vector(const std::vector<double>& values) {
 DistributedSolution solution_of(const DistributedModel& model, const DistributedBoundQp& qp, Vec v,
                                 const std::vector<double>& mu) {
   DistributedSolution out;
-  out.u.resize(model.n_own_dofs);
-  const PetscScalar* values = nullptr;
-  VecGetArrayRead(v, &values);
-  std::copy(values, values + model.n_own_dofs, out.u.data());
-  VecRestoreArrayRead(v, &values);
+  out.u = from_rows(model, v);
   per_node(model, qp, out.u.data(), [](const NodeTransform& t) -> const Eigen::MatrixXd& { return t.Q; });
   out.lambda = as_vector(mu);
   return out;
@@ -140,10 +146,7 @@ CertificateTerms distributed_certificate_terms(const DistributedModel& model, co
   per_node(model, qp, r.data(), [](const NodeTransform& t) { return Eigen::MatrixXd(t.Q.transpose()); });
   Vec rhs = nullptr, y = nullptr;
   check(MatCreateVecs(qp.A, &y, &rhs), "MatCreateVecs");
-  PetscScalar* values = nullptr;
-  VecGetArray(rhs, &values);
-  std::copy(r.data(), r.data() + r.size(), values);
-  VecRestoreArray(rhs, &values);
+  to_rows(model, r, rhs);
   PetscReal force = 0, dot = 0;
   VecNorm(rhs, NORM_INFINITY, &force);
   bool solved = true;

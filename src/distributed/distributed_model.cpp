@@ -15,15 +15,6 @@
 namespace contactqp::detail {
 namespace {
 
-// The first of this rank's consecutive global numbers, when it has n of them.
-long long first_of_mine(long long n, long long* total) {
-  long long first = 0;
-  MPI_Exscan(&n, &first, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
-  if (world_rank() == 0) first = 0;
-  MPI_Allreduce(&n, total, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
-  return first;
-}
-
 // Which boundaries each node lies on, from the faces of every rank.
 void mark_boundaries(DistributedModel& out) {
   const Mesh& mesh = out.local.mesh;
@@ -126,20 +117,34 @@ Eigen::VectorXd distributed_nodal_forces(const DistributedModel& out, const std:
   return f;
 }
 
-// Rows of the free DOFs and contact rows of the candidates: each rank's own consecutive.
+// Rows of the nodes with a free DOF (dim each) and contact rows of the candidates: each rank's
+// own consecutive.
 void number_rows(DistributedModel& out) {
   Model& model = out.local;
   const int dim = model.dim, n = model.mesh.n_nodes();
+  const auto has_free = [&](int node) {
+    for (int c = 0; c < dim; ++c)
+      if (model.free_index[dim * node + c] >= 0) return true;
+    return false;
+  };
   out.n_own_dofs = 0;
   for (int dof = 0; dof < dim * out.n_owned; ++dof) out.n_own_dofs += model.free_index[dof] >= 0;
-  out.first_row = static_cast<PetscInt>(first_of_mine(out.n_own_dofs, &out.n_global_dofs));
-  std::vector<int> rows(static_cast<std::size_t>(dim) * n, -1);
-  for (int dof = 0; dof < dim * out.n_owned; ++dof)
-    if (model.free_index[dof] >= 0) rows[dof] = static_cast<int>(out.first_row) + model.free_index[dof];
-  out.shared.from_owner(rows.data(), dim);
+  out.n_global_dofs = out.n_own_dofs;
+  MPI_Allreduce(MPI_IN_PLACE, &out.n_global_dofs, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+  long long own_nodes = 0, all_nodes = 0;
+  for (int node = 0; node < out.n_owned; ++node) own_nodes += has_free(node);
+  const long long first_node = first_of_mine(own_nodes, &all_nodes);
+  out.first_row = static_cast<PetscInt>(dim * first_node);
+  out.n_own_rows = static_cast<int>(dim * own_nodes);
+  out.n_global_rows = dim * all_nodes;
+  std::vector<int> rows(n, -1);
+  for (int node = 0, next = static_cast<int>(out.first_row); node < out.n_owned; ++node)
+    if (has_free(node)) rows[node] = next, next += dim;
+  out.shared.from_owner(rows.data(), 1);
+  out.node_row.assign(rows.begin(), rows.end());
   out.row_of_free.assign(model.n_free, -1);
   for (int dof = 0; dof < dim * n; ++dof)
-    if (model.free_index[dof] >= 0) out.row_of_free[model.free_index[dof]] = rows[dof];
+    if (model.free_index[dof] >= 0) out.row_of_free[model.free_index[dof]] = rows[dof / dim] + dof % dim;
 
   out.n_own_candidates = 0;
   for (const Candidate& candidate : model.candidates) out.n_own_candidates += candidate.node < out.n_owned;

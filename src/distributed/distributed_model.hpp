@@ -32,12 +32,20 @@ struct DistributedModel {
   long long n_global_nodes = 0, n_global_elements = 0;
   SharedNodes shared;
 
-  // Free DOFs: local free indices 0 … n_own_dofs − 1 are this rank's rows first_row … of the
-  // distributed matrix (PETSc's contiguous blocks); row_of_free[k] is local free DOF k's row.
+  // Free DOFs: local free indices 0 … n_own_dofs − 1 are this rank's own.
   int n_own_dofs = 0;
-  PetscInt first_row = 0;
   long long n_global_dofs = 0;
-  std::vector<PetscInt> row_of_free;
+  // Rows of the distributed matrix (the solver's block size dim): every node with a free DOF has
+  // its dim rows, consecutive, on its owner, its prescribed DOFs' rows too (they hold only their
+  // diagonal); nodes whose DOFs are all prescribed have none. This rank's rows are
+  // first_row … first_row + n_own_rows − 1.
+  PetscInt first_row = 0;
+  int n_own_rows = 0;
+  long long n_global_rows = 0;
+  std::vector<PetscInt> node_row;     // the first row of each node, −1 without a free DOF
+  std::vector<PetscInt> row_of_free;  // the row of each local free DOF
+  // The place of an own free DOF among this rank's rows (a PETSc vector's local array).
+  int local_row(int free) const { return static_cast<int>(row_of_free[free] - first_row); }
 
   // Contact rows: local.candidates[0 … n_own_candidates − 1] are at this rank's nodes and are
   // its rows first_candidate … of the whole B u ≤ g.

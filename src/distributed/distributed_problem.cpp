@@ -3,12 +3,14 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <utility>
 
+#include "coarse_lattice.hpp"
 #include "contact/contact.hpp"
 #include "contactqp/errors.hpp"
 #include "fe/node_elements.hpp"
@@ -135,13 +137,15 @@ void count_nonzeros(const DistributedModel& dm, std::vector<PetscInt>& diagonal,
     const int node = global - first_global;
     for (const auto& [j, free] : list) (j >= first_global && j < end_global ? d_node : o_node)[node] += free;
   }
-  diagonal.assign(dm.n_own_dofs, 0);
-  off.assign(dm.n_own_dofs, 0);
+  // A free DOF's row couples to the free DOFs of the nodes around; a prescribed DOF's row is
+  // its diagonal alone.
+  diagonal.assign(dm.n_own_rows, 1);
+  off.assign(dm.n_own_rows, 0);
   for (int dof = 0; dof < dim * mine; ++dof) {
-    const int row = model.free_index[dof];
-    if (row < 0) continue;
-    diagonal[row] = static_cast<PetscInt>(d_node[dof / dim]);
-    off[row] = static_cast<PetscInt>(o_node[dof / dim]);
+    const int free = model.free_index[dof];
+    if (free < 0) continue;
+    diagonal[dm.local_row(free)] = static_cast<PetscInt>(d_node[dof / dim]);
+    off[dm.local_row(free)] = static_cast<PetscInt>(o_node[dof / dim]);
   }
 }
 
@@ -181,6 +185,15 @@ void add_elements(const DistributedModel& dm, const DistributedBoundQp& qp, Eige
       }
     const int m = static_cast<int>(free.size());
     if (m == 0) continue;
+    // The prescribed DOFs' rows of nodes that have rows: K_pp as if they were free, alone on
+    // their row and column (the solver's block size dim keeps every node's DOFs together).
+    for (int i = 0; i < npe; ++i)
+      for (int c = 0; c < dim; ++c) {
+        const int dof = dim * v[i] + c;
+        if (model.free_index[dof] >= 0 || dm.node_row[v[i]] < 0) continue;
+        const PetscInt row = dm.node_row[v[i]] + c;
+        check(MatSetValue(qp.A, row, row, Ke(dim * i + c, dim * i + c), ADD_VALUES), "MatSetValue");
+      }
     // f −= K_fp u_p, before the change of variables (f is in u).
     for (int a : moved) {
       const double u = model.prescribed[dim * v[a / dim] + a % dim];
@@ -213,37 +226,51 @@ void add_elements(const DistributedModel& dm, const DistributedBoundQp& qp, Eige
   }
 }
 
+// The rigid-body motions at the nodes, as rigid_body_modes() scales them: about the centroid of
+// the whole mesh, by its extent (two reductions).
+struct RigidMotions {
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  double extent = 1;
+  RigidMotions(const DistributedModel& dm) {
+    const Mesh& mesh = dm.local.mesh;
+    double sums[4] = {0, 0, 0, static_cast<double>(dm.n_owned)};
+    for (int node = 0; node < dm.n_owned; ++node)
+      for (int c = 0; c < 3; ++c) sums[c] += mesh.nodes[node][c];
+    MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    if (sums[3] > 0) centroid = Eigen::Vector3d(sums[0], sums[1], sums[2]) / sums[3];
+    double largest = 0;
+    for (int node = 0; node < dm.n_owned; ++node) largest = std::max(largest, (mesh.nodes[node] - centroid).norm());
+    MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    if (largest > 0) extent = largest;
+  }
+  // dim × k at a node, its DOF components (dof_frame()).
+  Eigen::MatrixXd at(const Model& model, int node) const {
+    return dof_frame(model, node).transpose() * rigid_motions_at(model.dim, model.mesh.nodes[node], centroid, extent);
+  }
+};
+
 // The rigid-body modes on this rank's rows, in v, orthonormalised over all ranks (Cholesky QR,
 // twice: one reduction of a k × k Gram matrix each).
-void add_near_null_space(const DistributedModel& dm, DistributedBoundQp& qp) {
+void add_near_null_space(const DistributedModel& dm, DistributedBoundQp& qp, const RigidMotions& rigid) {
   const Model& model = dm.local;
-  const Mesh& mesh = model.mesh;
   const int dim = model.dim, k = dim == 2 ? 3 : 6;
-  double sums[4] = {0, 0, 0, static_cast<double>(dm.n_owned)};
-  for (int node = 0; node < dm.n_owned; ++node)
-    for (int c = 0; c < 3; ++c) sums[c] += mesh.nodes[node][c];
-  MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  if (sums[3] > 0) centroid = Eigen::Vector3d(sums[0], sums[1], sums[2]) / sums[3];
-  double extent = 0;
-  for (int node = 0; node < dm.n_owned; ++node) extent = std::max(extent, (mesh.nodes[node] - centroid).norm());
-  MPI_Allreduce(MPI_IN_PLACE, &extent, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-  if (!(extent > 0)) extent = 1;
-  Eigen::MatrixXd modes = Eigen::MatrixXd::Zero(dm.n_own_dofs, k);
+  // 0 at the prescribed DOFs' rows (the solver's choice, seam-petsc.md).
+  Eigen::MatrixXd modes = Eigen::MatrixXd::Zero(dm.n_own_rows, k);
   for (int node = 0; node < dm.n_owned; ++node) {
-    const Eigen::MatrixXd local =
-        dof_frame(model, node).transpose() * rigid_motions_at(dim, mesh.nodes[node], centroid, extent);
+    const Eigen::MatrixXd local = rigid.at(model, node);
     for (int c = 0; c < dim; ++c) {
-      const int row = model.free_index[dim * node + c];
-      if (row >= 0) modes.row(row) = local.row(c);
+      const int free = model.free_index[dim * node + c];
+      if (free >= 0) modes.row(dm.local_row(free)) = local.row(c);
     }
     const int t = qp.transform_of_node[node];
     if (t < 0) continue;
     const NodeTransform& transform = qp.transforms[t];  // v_C = T u_C
     Eigen::MatrixXd block(transform.columns.size(), k);
-    for (std::size_t a = 0; a < transform.columns.size(); ++a) block.row(a) = modes.row(transform.columns[a]);
+    for (std::size_t a = 0; a < transform.columns.size(); ++a)
+      block.row(a) = modes.row(dm.local_row(transform.columns[a]));
     block = transform.T * block;
-    for (std::size_t a = 0; a < transform.columns.size(); ++a) modes.row(transform.columns[a]) = block.row(a);
+    for (std::size_t a = 0; a < transform.columns.size(); ++a)
+      modes.row(dm.local_row(transform.columns[a])) = block.row(a);
   }
   for (int pass = 0; pass < 2; ++pass) {
     Eigen::MatrixXd gram = modes.transpose() * modes;
@@ -257,10 +284,100 @@ void add_near_null_space(const DistributedModel& dm, DistributedBoundQp& qp) {
     check(MatCreateVecs(qp.A, &mode, nullptr), "MatCreateVecs");
     PetscScalar* values = nullptr;
     VecGetArray(mode, &values);
-    for (int row = 0; row < dm.n_own_dofs; ++row) values[row] = modes(row, j);
+    for (int row = 0; row < dm.n_own_rows; ++row) values[row] = modes(row, j);
     VecRestoreArray(mode, &values);
     qp.near_null_space.push_back(mode);
   }
+}
+
+// The P2 → P1 interpolation and its level's rigid modes (distributed_problem.hpp), for a
+// multigrid whose first coarse level is the vertices' linear elements.
+void add_coarse_space(const DistributedModel& dm, DistributedBoundQp& qp, const RigidMotions& rigid) {
+  const Model& model = dm.local;
+  const Mesh& mesh = model.mesh;
+  if (mesh.order != 2) return;
+  const int dim = model.dim, nv = dim + 1, npe = mesh.nodes_per_element(), n = mesh.n_nodes();
+  // Each node a vertex, or a mid-edge node between its edge's two ends.
+  std::vector<char> vertex(n, 0);
+  std::vector<std::array<int, 2>> ends(n, {-1, -1});
+  for (int e = 0; e < mesh.n_elements(); ++e) {
+    const int* v = mesh.element(e);
+    for (int k = 0; k < nv; ++k) vertex[v[k]] = 1;
+    for (int k = nv; k < npe; ++k) ends[v[k]] = {v[simplex_edge(k - nv)[0]], v[simplex_edge(k - nv)[1]]};
+  }
+  // The vertices' numbers on the coarse level: each rank's own consecutive.
+  long long own = 0, total = 0;
+  for (int node = 0; node < dm.n_owned; ++node) own += vertex[node];
+  const long long first = first_of_mine(own, &total);
+  std::vector<int> coarse(n, -1);
+  for (int node = 0, next = static_cast<int>(first); node < dm.n_owned; ++node)
+    if (vertex[node]) coarse[node] = next++;
+  dm.shared.from_owner(coarse.data(), 1);
+  qp.vertex_of_node = coarse;
+
+  Mat& P = qp.coarse_interpolation;
+  check(MatCreate(PETSC_COMM_WORLD, &P), "MatCreate");
+  check(MatSetSizes(P, dm.n_own_rows, static_cast<PetscInt>(dim * own), static_cast<PetscInt>(dm.n_global_rows),
+                    static_cast<PetscInt>(dim * total)),
+        "MatSetSizes");
+  check(MatSetType(P, MATAIJ), "MatSetType");
+  check(MatSetBlockSizes(P, dim, dim), "MatSetBlockSizes");
+  // At most two vertices' dim columns per row (a candidate node's T mixes its components).
+  check(MatSeqAIJSetPreallocation(P, 2 * dim, nullptr), "MatSeqAIJSetPreallocation");
+  check(MatMPIAIJSetPreallocation(P, 2 * dim, nullptr, 2 * dim, nullptr), "MatMPIAIJSetPreallocation");
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  std::vector<PetscInt> rows(dim), columns;
+  for (int node = 0; node < dm.n_owned; ++node) {
+    if (dm.node_row[node] < 0) continue;
+    const std::vector<int> from =
+        vertex[node] ? std::vector<int>{node} : std::vector<int>{ends[node][0], ends[node][1]};
+    RowMajor block = RowMajor::Zero(dim, dim * from.size());
+    columns.clear();
+    for (std::size_t a = 0; a < from.size(); ++a) {
+      block.middleCols(dim * a, dim).setIdentity();
+      for (int c = 0; c < dim; ++c) columns.push_back(static_cast<PetscInt>(dim) * coarse[from[a]] + c);
+    }
+    block /= static_cast<double>(from.size());
+    for (int c = 0; c < dim; ++c) {
+      rows[c] = dm.node_row[node] + c;
+      if (model.free_index[dim * node + c] < 0) block.row(c).setZero();  // a prescribed row
+    }
+    const int t = qp.transform_of_node[node];
+    if (t >= 0) {  // P_v = T P_u on the node's group
+      const NodeTransform& transform = qp.transforms[t];
+      std::vector<int> component;
+      for (int column : transform.columns)
+        for (int c = 0; c < dim; ++c)
+          if (model.free_index[dim * node + c] == column) component.push_back(c);
+      RowMajor part(component.size(), block.cols());
+      for (std::size_t a = 0; a < component.size(); ++a) part.row(a) = block.row(component[a]);
+      part = transform.T * part;
+      for (std::size_t a = 0; a < component.size(); ++a) block.row(component[a]) = part.row(a);
+    }
+    check(MatSetValues(P, dim, rows.data(), static_cast<PetscInt>(columns.size()), columns.data(), block.data(),
+                       INSERT_VALUES),
+          "MatSetValues");
+  }
+  check(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+
+  // The coarse level's rigid modes: at each own vertex in its DOF components, 0 where prescribed.
+  const int k = dim == 2 ? 3 : 6;
+  for (int j = 0; j < k; ++j) {
+    Vec mode = nullptr;
+    check(MatCreateVecs(P, &mode, nullptr), "MatCreateVecs");
+    qp.coarse_near_null_space.push_back(mode);
+  }
+  std::vector<PetscScalar*> values(k);
+  for (int j = 0; j < k; ++j) VecGetArray(qp.coarse_near_null_space[j], &values[j]);
+  for (int node = 0; node < dm.n_owned; ++node) {
+    if (!vertex[node]) continue;
+    const Eigen::MatrixXd motion = rigid.at(model, node);
+    for (int c = 0; c < dim; ++c)
+      for (int j = 0; j < k; ++j)
+        values[j][dim * (coarse[node] - first) + c] = model.free_index[dim * node + c] >= 0 ? motion(c, j) : 0.0;
+  }
+  for (int j = 0; j < k; ++j) VecRestoreArray(qp.coarse_near_null_space[j], &values[j]);
 }
 
 }  // namespace
@@ -274,6 +391,10 @@ DistributedBoundQp& DistributedBoundQp::operator=(DistributedBoundQp&& other) no
   std::swap(bounded, other.bounded);
   std::swap(upper, other.upper);
   std::swap(near_null_space, other.near_null_space);
+  std::swap(block_size, other.block_size);
+  std::swap(coarse_interpolation, other.coarse_interpolation);
+  std::swap(coarse_near_null_space, other.coarse_near_null_space);
+  std::swap(vertex_of_node, other.vertex_of_node);
   std::swap(transforms, other.transforms);
   std::swap(transform_of_node, other.transform_of_node);
   return *this;
@@ -282,6 +403,8 @@ DistributedBoundQp& DistributedBoundQp::operator=(DistributedBoundQp&& other) no
 DistributedBoundQp::~DistributedBoundQp() {
   if (petsc_finalized()) return;
   for (Vec& v : near_null_space) VecDestroy(&v);
+  for (Vec& v : coarse_near_null_space) VecDestroy(&v);
+  if (coarse_interpolation) MatDestroy(&coarse_interpolation);
   if (f) VecDestroy(&f);
   if (b) VecDestroy(&b);
   if (A) MatDestroy(&A);
@@ -295,10 +418,12 @@ DistributedBoundQp assemble_distributed_bound_qp(const DistributedModel& dm) {
 
   std::vector<PetscInt> diagonal, off;
   count_nonzeros(dm, diagonal, off);
-  const PetscInt n = static_cast<PetscInt>(dm.n_global_dofs), local = dm.n_own_dofs;
+  const PetscInt n = static_cast<PetscInt>(dm.n_global_rows), local = dm.n_own_rows;
   check(MatCreate(PETSC_COMM_WORLD, &qp.A), "MatCreate");
   check(MatSetSizes(qp.A, local, local, n, n), "MatSetSizes");
   check(MatSetType(qp.A, MATAIJ), "MatSetType");
+  check(MatSetBlockSize(qp.A, dim), "MatSetBlockSize");
+  qp.block_size = dim;
   check(MatSeqAIJSetPreallocation(qp.A, 0, diagonal.data()), "MatSeqAIJSetPreallocation");
   check(MatMPIAIJSetPreallocation(qp.A, 0, diagonal.data(), 0, off.data()), "MatMPIAIJSetPreallocation");
   diagonal = {};
@@ -341,16 +466,16 @@ DistributedBoundQp assemble_distributed_bound_qp(const DistributedModel& dm) {
   VecGetArray(qp.b, &b);
   double largest_f = 0;
   bool f_finite = true;
-  for (int k = 0; k < dm.n_own_dofs; ++k) {
+  for (int k = 0; k < dm.n_own_rows; ++k) {
     largest_f = std::max(largest_f, std::abs(b[k]));
     f_finite = f_finite && std::isfinite(b[k]);
   }
   for (const NodeTransform& t : qp.transforms) {
     if (t.node >= dm.n_owned) continue;
     Eigen::VectorXd part(t.columns.size());
-    for (std::size_t a = 0; a < t.columns.size(); ++a) part[a] = b[t.columns[a]];
+    for (std::size_t a = 0; a < t.columns.size(); ++a) part[a] = b[dm.local_row(t.columns[a])];
     part = t.Q.transpose() * part;
-    for (std::size_t a = 0; a < t.columns.size(); ++a) b[t.columns[a]] = part[a];
+    for (std::size_t a = 0; a < t.columns.size(); ++a) b[dm.local_row(t.columns[a])] = part[a];
   }
   VecRestoreArray(qp.b, &b);
   double extremes[2] = {largest, largest_f};
@@ -368,7 +493,9 @@ DistributedBoundQp assemble_distributed_bound_qp(const DistributedModel& dm) {
       qp.upper.push_back(contact_row(model, model.candidates[t.first_candidate + a]).g);
     }
   }
-  add_near_null_space(dm, qp);
+  const RigidMotions rigid(dm);
+  add_near_null_space(dm, qp, rigid);
+  add_coarse_space(dm, qp, rigid);
   return qp;
 }
 

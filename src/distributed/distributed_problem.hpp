@@ -27,14 +27,25 @@ struct NodeTransform {
 };
 
 struct DistributedBoundQp {
-  Mat A = nullptr;  // rows: the free DOFs (DistributedModel::first_row …), v-variables; SPD
-  Vec b = nullptr;  // Qᵀ f, A's layout
-  Vec f = nullptr;  // f itself (u-variables), for the certificate
+  // Rows: every node with a free DOF, dim each (DistributedModel::first_row …), v-variables;
+  // SPD. A prescribed DOF's row and column hold only its diagonal K_pp, and b_p = 0, so v_p = 0.
+  Mat A = nullptr;
+  int block_size = 1;  // dim: A's block size, a node's rows together
+  Vec b = nullptr;     // Qᵀ f, A's layout
+  Vec f = nullptr;     // f itself (u-variables), for the certificate
   // This rank's bounds, one per own candidate in candidate order: the global row of its
   // variable, and g_i.
   std::vector<PetscInt> bounded;
   std::vector<double> upper;
-  std::vector<Vec> near_null_space;  // rigid-body modes in v (3 in 2D, 6 in 3D), orthonormal
+  std::vector<Vec> near_null_space;  // rigid-body modes in v (3 in 2D, 6 in 3D), 0 at prescribed rows, orthonormal
+  // Quadratic elements (null otherwise): the P2 → P1 nodal interpolation in v, P_v = T P_u,
+  // P_u = (1 at a vertex, ½ ½ from a mid-edge node's two edge ends) ⊗ I_dim, A's rows (the
+  // prescribed ones zero) by the dim components of every vertex node (dim·vertex + c, with
+  // the vertex's owner); and the rigid-body modes on that level (0 at prescribed vertex DOFs,
+  // not orthonormalised).
+  Mat coarse_interpolation = nullptr;
+  std::vector<Vec> coarse_near_null_space;
+  std::vector<int> vertex_of_node;  // each local node's number among the vertices (P's columns), −1 off them
   // The transforms of the candidate nodes this rank holds (its own and its ghosts'), and of
   // each local node the index of its transform or −1.
   std::vector<NodeTransform> transforms;
