@@ -19,8 +19,8 @@ std::string backends_help() {
   std::string text = "Backends (--backend-option key=value, or <backend>.key=value for one of them):\n";
   for (Backend backend : all_backends()) {
     const auto registration = backend_registration(backend);
-    std::string line = "  " + registration->name + std::string(width + 2 - registration->name.size(), ' ') +
-                       registration->summary;
+    std::string line =
+        "  " + registration->name + std::string(width + 2 - registration->name.size(), ' ') + registration->summary;
     if (!registration->available) line += " (not built into this copy)";
     if (!registration->option_names.empty())
       line += "; options " + detail::join(registration->option_names) +

@@ -59,12 +59,14 @@ class BackendRegistry {
   };
 
   static void check(const BackendRegistration& r) {
-    const bool well_formed =
-        !r.name.empty() && r.name[0] >= 'a' && r.name[0] <= 'z' &&
-        std::all_of(r.name.begin(), r.name.end(), [](char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_'; });
+    const bool well_formed = !r.name.empty() && r.name[0] >= 'a' && r.name[0] <= 'z' &&
+                             std::all_of(r.name.begin(), r.name.end(), [](char c) {
+                               return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+                             });
     if (!well_formed)
       throw InputError("backend", "= \"" + r.name + "\": a backend's name is lower case, [a-z][a-z0-9_]*");
-    if (r.available && !r.solve) throw InputError("backend", "= \"" + r.name + "\": an available backend needs a solve");
+    if (r.available && !r.solve)
+      throw InputError("backend", "= \"" + r.name + "\": an available backend needs a solve");
     if (r.problem_kinds.empty())
       throw InputError("backend", "= \"" + r.name + "\": a backend must solve at least one kind of problem");
   }
