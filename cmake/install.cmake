@@ -8,11 +8,7 @@
 include(CMakePackageConfigHelpers)
 set(CONTACTQP_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/contactqp)
 
-set(CONTACTQP_LIBRARIES cqp_qp cqp_solvers cqp_fe cqp_run contactqp_library)
-if(CONTACTQP_WITH_PETSC)
-  list(APPEND CONTACTQP_LIBRARIES cqp_distributed)
-endif()
-install(TARGETS ${CONTACTQP_LIBRARIES}
+install(TARGETS cqp_qp cqp_solvers cqp_fe cqp_run cqp_petsc contactqp_library
         EXPORT contactqpTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -32,17 +28,15 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/contactqpConfig.cmake ${CMAKE_CURRENT_
 # pkg-config: the archives in link order, then what they need (static libraries carry no
 # dependency list of their own).
 set(CONTACTQP_PC_REQUIRES "eigen3")
+# PETSc and MPI before Ipopt: its sequential MUMPS defines stub MPI functions (CMakeLists.txt, contactqp_library).
+if(CONTACTQP_WITH_PETSC)
+  string(APPEND CONTACTQP_PC_REQUIRES " PETSc ompi-cxx")
+endif()
 if(CONTACTQP_HAVE_IPOPT)
   string(APPEND CONTACTQP_PC_REQUIRES " ipopt")
 endif()
 if(CONTACTQP_HAVE_NLOPT)
   string(APPEND CONTACTQP_PC_REQUIRES " nlopt")
-endif()
-set(CONTACTQP_PC_LIBS "-lcqp_run -lcqp_fe -lcqp_solvers -lcqp_qp")
-if(CONTACTQP_WITH_PETSC)
-  string(APPEND CONTACTQP_PC_REQUIRES " PETSc ompi-cxx")
-  # cqp_run calls the distributed run (cqp_distributed), which needs cqp_fe after it.
-  set(CONTACTQP_PC_LIBS "-lcqp_run -lcqp_distributed -lcqp_fe -lcqp_solvers -lcqp_qp")
 endif()
 # Every library's list of built-in registrations (cmake/builtins.cmake) is kept in the link the
 # way the CMake package keeps it: -Wl,--undefined=<its symbol> before the archives.

@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "contact/contact.hpp"
-#include "qp/petsc_runtime.hpp"
+#include "petsc/petsc_runtime.hpp"
 
 namespace contactqp::detail {
 namespace {

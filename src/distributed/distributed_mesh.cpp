@@ -15,7 +15,7 @@
 #include "contactqp/errors.hpp"
 #include "element_partition.hpp"
 #include "model/model_parts.hpp"
-#include "qp/petsc_runtime.hpp"
+#include "petsc/petsc_runtime.hpp"
 #include "rank_agreement.hpp"
 #include "world.hpp"
 

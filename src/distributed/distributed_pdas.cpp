@@ -14,7 +14,7 @@
 
 #include "contactqp/errors.hpp"
 #include "contactqp/timer.hpp"
-#include "qp/petsc_runtime.hpp"
+#include "petsc/petsc_runtime.hpp"
 
 namespace contactqp::detail {
 namespace {

@@ -16,8 +16,8 @@
 #include "fe/node_elements.hpp"
 #include "fe/stiffness_matrix.hpp"
 #include "model/rigid_body_modes.hpp"
+#include "petsc/petsc_runtime.hpp"
 #include "qp/bound_transform.hpp"
-#include "qp/petsc_runtime.hpp"
 #include "rank_agreement.hpp"
 #include "world.hpp"
 

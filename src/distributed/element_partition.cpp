@@ -9,7 +9,7 @@
 #include <string>
 
 #include "coarse_lattice.hpp"
-#include "qp/petsc_runtime.hpp"
+#include "petsc/petsc_runtime.hpp"
 
 namespace contactqp::detail {
 namespace {

@@ -1,36 +1,34 @@
-// run_scene_distributed() (run_distributed.hpp).
-#include "run_distributed.hpp"
-
+// run_scene() with each process holding only its part of everything that grows with the mesh
+// (docs/petsc.md, "Distributed runs"): the mesh, the model, A = QᵀKQ, the vectors and the
+// ParaView output. Taken for the petsc backend under mpirun (or with RunOptions::distributed);
+// the report is run_scene()'s, the summary and the result files on rank 0, and every rank writes
+// its piece of the .pvtu through RunReport::write_pieces. Registered with run_scene() at the end.
 #include <mpi.h>
 
 #include <algorithm>
 
+#include "backend_options.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/linear_solver.hpp"
 #include "contactqp/processes.hpp"
 #include "contactqp/solve.hpp"
 #include "distributed_post.hpp"
+#include "mpi.hpp"
+#include "qp/builtins.hpp"
 #include "qp/number_format.hpp"
+#include "run/distributed_run.hpp"
 
 namespace contactqp::detail {
 namespace {
 
-// The petsc backend's options (solvers/petsc.cpp reads and checks the same keys; the options
-// were validated before this runs): unaddressed keys and "petsc.key".
+// The petsc backend's options (petsc_backend.cpp reads and checks the same keys; they were
+// validated before this runs): unaddressed keys and "petsc.key".
 DistributedPdasOptions pdas_options(const SolveOptions& options) {
   DistributedPdasOptions out;
   out.tol = options.tol;
   out.max_iterations = options.max_iterations;
-  out.petsc_options = options.petsc_options;
-  std::map<std::string, std::string> mine;
-  for (const auto& [key, value] : options.backend_options) {
-    const auto dot = key.find('.');
-    if (dot == std::string::npos)
-      mine.emplace(key, value);  // an addressed key wins below
-    else if (key.substr(0, dot) == "petsc")
-      mine[key.substr(dot + 1)] = value;
-  }
-  for (const auto& [key, value] : mine) {
+  out.petsc_options = petsc_options_of(options.library_options);
+  for (const auto& [key, value] : options_for(Backend::Petsc, options.backend_options)) {
     const bool yes = value == "true" || value == "1";
     if (key == "inexact") out.inexact = yes;
     if (key == "reuse_preconditioner") out.reuse_preconditioner = yes;
@@ -77,18 +75,19 @@ SolveResult solve_result(const DistributedPdasResult& solved, const DistributedM
   return result;
 }
 
-}  // namespace
-
-bool runs_distributed(const Scene& scene, const RunOptions& options) {
+// Whether run_scene() goes this way: the petsc backend with contact, a one-body scene, and
+// several processes or options.distributed.
+bool takes_distributed_run(const Scene& scene, const RunOptions& options) {
   return scene.solver.backend == Backend::Petsc && !options.no_contact && scene.bodies.empty() && scene.pairs.empty() &&
          (options.distributed || process_count() > 1);
 }
 
-RunReport run_scene_distributed(const Scene& scene, const RunOptions& options) {
+// Collective. What run_scene() does, distributed.
+RunReport run_distributed(const Scene& scene, const RunOptions& options) {
   Stopwatch total;
   validate_options(scene.solver);
   const DistributedPdasOptions settings = pdas_options(scene.solver);
-  start_petsc_runtime(scene.solver.petsc_options);  // MPI, with the user's options on PETSc's command line
+  start_process_runtime(scene.solver.library_options);  // MPI, with the user's options on PETSc's command line
   const auto phase = [&options](const char* name) {
     if (options.on_phase) options.on_phase(name);
   };
@@ -170,4 +169,13 @@ RunReport run_scene_distributed(const Scene& scene, const RunOptions& options) {
   return report;
 }
 
+}  // namespace
 }  // namespace contactqp::detail
+
+// run_scene() goes this way for the petsc backend under mpirun (run/distributed_run.hpp).
+CONTACTQP_BUILTIN(distributed_run) {
+  DistributedRun run;
+  run.takes = takes_distributed_run;
+  run.run = run_distributed;
+  register_distributed_run(run);
+}

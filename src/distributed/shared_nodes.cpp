@@ -6,7 +6,7 @@
 #include <string>
 #include <utility>
 
-#include "qp/petsc_runtime.hpp"
+#include "petsc/petsc_runtime.hpp"
 
 namespace contactqp::detail {
 namespace {

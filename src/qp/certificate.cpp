@@ -8,10 +8,13 @@
 #include "norms.hpp"
 
 namespace contactqp {
+
+double force_scale(const VectorXd& f, const VectorXd& Ku, const VectorXd& Btl) {
+  return std::max({inf_norm(f), inf_norm(Ku), inf_norm(Btl)});
+}
+
 double force_scale(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda) {
-  const VectorXd Ku = K_times(qp, u);
-  const VectorXd Btl = qp.B.transpose() * lambda;
-  return std::max({inf_norm(qp.f), inf_norm(Ku), inf_norm(Btl)});
+  return force_scale(qp.f, K_times(qp, u), qp.B.transpose() * lambda);
 }
 
 double length_scale(const QuadraticProgram& qp, const VectorXd& u) {
@@ -24,8 +27,12 @@ double Certificate::kkt_max() const {
 }
 
 CertificateTerms certificate_terms(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda) {
+  return certificate_terms(qp, K_times(qp, u), u, lambda);
+}
+
+CertificateTerms certificate_terms(const QuadraticProgram& qp, const VectorXd& Ku, const VectorXd& u,
+                                   const VectorXd& lambda) {
   CertificateTerms t;
-  const VectorXd Ku = K_times(qp, u);
   const VectorXd Btl = qp.B.transpose() * lambda;
   const VectorXd r = Ku - qp.f + Btl;  // stationarity residual
   const VectorXd Bu = qp.B * u;
@@ -73,15 +80,15 @@ Certificate certificate_from(const CertificateTerms& t) {
 
 Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda,
                     const LinearSolver* K_factor) {
-  CertificateTerms terms = certificate_terms(qp, u, lambda);
+  const VectorXd Ku = K_times(qp, u);
+  CertificateTerms terms = certificate_terms(qp, Ku, u, lambda);
   std::unique_ptr<CholeskyFactor> own_factor;
-  if (!K_factor && !qp.K_is_rank_share) {
+  if (!K_factor) {
     own_factor = std::make_unique<CholeskyFactor>(qp.K);
     K_factor = own_factor.get();
   }
-  // No rank holds a shared K to factorise: the backend passes its solver of K.
-  if (K_factor && K_factor->ok()) {
-    const VectorXd r = K_times(qp, u) - qp.f + qp.B.transpose() * lambda;
+  if (K_factor->ok()) {
+    const VectorXd r = Ku - qp.f + qp.B.transpose() * lambda;
     terms.r_K_inverse_r = r.dot(K_factor->solve(r));
   }
   return certificate_from(terms);

@@ -49,7 +49,7 @@ Scene scene_with(const std::string& path, int refinements, double contact_size) 
 
 // The parts against the serial mesh: the same points, elements and boundary faces.
 void check_against_serial(const Scene& scene) {
-  start_petsc_runtime();
+  start_process_runtime();
   Model reference;
   detail::choose_max_gap(scene, reference);
   const Mesh serial = scene_mesh(scene);

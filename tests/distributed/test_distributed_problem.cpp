@@ -32,7 +32,7 @@ double largest(double x) {
 }
 
 void check_problem(const Scene& scene) {
-  start_petsc_runtime();
+  start_process_runtime();
   const detail::DistributedModel model = detail::build_distributed_model(scene, BuildOptions());
   const detail::DistributedBoundQp qp = detail::assemble_distributed_bound_qp(model);
   const Model& local = model.local;
