@@ -18,6 +18,7 @@ Writes OUT/memory.csv (one row per rank and run), OUT/memory-table.md, OUT/conte
 run's JSON and stderr (OUT/RANKS/). Ranks whose run did not finish keep their row with the status.
 
 usage: benchmarks/petsc/memory.py BUILD_DIR SCENE OUT_DIR [RANKS...]      (default 1 2 4 8)
+       benchmarks/petsc/memory.py - SCENE OUT_DIR RANKS...     (the table again from OUT_DIR's runs)
 Run it under flock /work/coord/heavy.lock when the scene needs more than 3 GB."""
 import csv
 import datetime
@@ -78,11 +79,25 @@ def run(cli, scene, ranks, out):
     done = subprocess.run(command, env=ENV, capture_output=True, text=True)
     with open(os.path.join(directory, "stderr.txt"), "w") as f:
         f.write(done.stderr)
+    with open(os.path.join(directory, "exit"), "w") as f:
+        f.write("%d\n" % done.returncode)
+    return collect(out, ranks)
+
+
+def collect(out, ranks):
+    """The rows of one run from the files it left in OUT/RANKS/."""
+    directory = os.path.join(out, str(ranks))
+    result = os.path.join(directory, "result.json")
+    times = os.path.join(directory, "time")
     report = json.load(open(result)) if os.path.exists(result) else {}
-    memory = parse_stderr(done.stderr)
+    stderr = open(os.path.join(directory, "stderr.txt")).read() if os.path.exists(
+        os.path.join(directory, "stderr.txt")) else ""
+    code = open(os.path.join(directory, "exit")).read().strip() if os.path.exists(
+        os.path.join(directory, "exit")) else "?"
+    memory = parse_stderr(stderr)
     rows = []
     for rank in range(ranks):
-        row = {"ranks": ranks, "rank": rank, "status": report.get("status", "exit %d" % done.returncode)}
+        row = {"ranks": ranks, "rank": rank, "status": report.get("status", "exit " + code)}
         try:
             text = open("%s.%d" % (times, rank)).read()
             row["peak_mib"] = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", text).group(1)) / 1024
@@ -121,11 +136,12 @@ def table(rows):
 
 
 def main(build, scene, out, *ranks):
+    """With BUILD_DIR "-" nothing runs: the table is made again from the runs OUT holds."""
     cli = os.path.join(os.path.abspath(build), "contactqp")
     os.makedirs(out, exist_ok=True)
     rows = []
     for n in [int(r) for r in ranks] or [1, 2, 4, 8]:
-        rows += run(cli, os.path.abspath(scene), n, out)
+        rows += collect(out, n) if build == "-" else run(cli, os.path.abspath(scene), n, out)
         print(table([r for r in rows if r["ranks"] == n]), flush=True)
     with open(os.path.join(out, "memory.csv"), "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=FIELDS)

@@ -7,6 +7,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "contactqp/processes.hpp"
 #include "contactqp/scene.hpp"
 #include "distributed/distributed_problem.hpp"
 #include "test_support.hpp"
