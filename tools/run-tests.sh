@@ -63,11 +63,9 @@ build-fuzz/fuzz/fuzz_scene build-fuzz/corpus -dict=fuzz/scene.dict -max_total_ti
   -rss_limit_mb=2048 -artifact_prefix=build-fuzz/ -print_final_stats=1
 passed=$((passed + 1))
 # The seeds: every shipped scene's mesh, coarse, as .msh 4.1 and 2.2, binary and ASCII (stage 1's
-# contactqp meshes them, the gmsh program converts). Gmsh's own leaks on its error paths are in
-# tools/lsan.supp, as in stage 2.
+# contactqp meshes them, the gmsh program converts).
 /usr/bin/python3 tools/mesh_corpus.py build/contactqp build-fuzz/mesh-corpus
-LSAN_OPTIONS=suppressions=$(pwd)/tools/lsan.supp:print_suppressions=0 \
-  build-fuzz/fuzz/fuzz_mesh build-fuzz/mesh-corpus -dict=fuzz/mesh.dict -max_total_time=30 -timeout=10 \
+build-fuzz/fuzz/fuzz_mesh build-fuzz/mesh-corpus -dict=fuzz/mesh.dict -max_total_time=30 -timeout=10 \
   -rss_limit_mb=2048 -artifact_prefix=build-fuzz/mesh- -print_final_stats=1
 passed=$((passed + 1))
 stage_done 3

@@ -60,7 +60,8 @@ Format::Format() {
   contact.keys = {{"boundary"}, {"max_gap"}, {"pair"}};
   transform.keys = {must("rotate_degrees"), must("axis", nullptr, 3)};
   // "options" holds the backend's own keys, which the backend checks (--backend-option).
-  solver.keys = {{"backend"}, {"linear_solver"}, {"tol"}, {"rho"}, {"max_iterations"}, {"options"}};
+  // "petsc_options": PETSc's options database entries, as --petsc-options (the PETSc room reads it).
+  solver.keys = {{"backend"}, {"linear_solver"}, {"tol"}, {"rho"}, {"max_iterations"}, {"options"}, {"petsc_options"}};
 
   // A "bodies" entry: the body's own keys, then its shape as in "body".
   bodies_entry = body;

@@ -70,6 +70,9 @@ namespace detail {
 TransformSpec read_transform(JsonObject transform, int dim) {
   TransformSpec spec;
   spec.rotate_degrees = transform.number("rotate_degrees");
+  // A turn is a turn: anything beyond one is a mistake (and 1e308 once overflowed the quarter count).
+  require(std::abs(spec.rotate_degrees) <= 360, transform.path_of("rotate_degrees"), spec.rotate_degrees,
+          "must lie in [-360, 360]");
   // 2D scenes turn about z only: an axis there is an unknown key.
   if (dim == 3) spec.axis = read_direction(transform.value("axis"), transform.path_of("axis"), 3);
   transform.finish();
