@@ -8,6 +8,9 @@
 //
 // Ipopt factorises the whole KKT matrix with MUMPS at every iteration and never needs K's
 // Cholesky factor, so SolveResult::K_factor stays null (certify() factorises K itself).
+#include "backends.hpp"
+
+#ifdef CONTACTQP_HAVE_IPOPT  // set by CMake when Ipopt was found (CONTACTQP_WITH_IPOPT)
 #include <IpDenseVector.hpp>
 #include <IpIpoptApplication.hpp>
 #include <IpIpoptData.hpp>
@@ -21,7 +24,6 @@
 #include <mutex>
 
 #include "backend_options.hpp"
-#include "backends.hpp"
 #include "contactqp/errors.hpp"
 
 namespace contactqp::detail {
@@ -326,8 +328,6 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> configured_application(const QuadraticP
   return app;
 }
 
-}  // namespace
-
 void check_ipopt_options(const SolveOptions& options) {
   std::lock_guard<std::mutex> lock(ipopt_mutex());
   configured_application(QuadraticProgram{}, options);
@@ -387,4 +387,22 @@ SolveResult solve_ipopt(const QuadraticProgram& qp, const SolveOptions& options)
   return result;
 }
 
+}  // namespace
 }  // namespace contactqp::detail
+#endif  // CONTACTQP_HAVE_IPOPT
+
+CONTACTQP_BUILTIN(ipopt) {
+  BackendRegistration ipopt;
+  ipopt.name = "ipopt";
+  ipopt.summary = "primal interior point (Ipopt with MUMPS) on the QP itself";
+  ipopt.order = 30;
+  ipopt.option_names = {"print_level", "max_iter", "tol", "mu_strategy", "mu_init"};
+  ipopt.library_options = true;  // any of Ipopt's own options, checked against Ipopt's list
+#ifdef CONTACTQP_HAVE_IPOPT
+  ipopt.check_options = check_ipopt_options;
+  ipopt.solve = solve_ipopt;
+#else
+  ipopt.available = false;
+#endif
+  register_backend(ipopt);
+}

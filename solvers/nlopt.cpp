@@ -10,6 +10,9 @@
 // below tol. Stationarity and dual feasibility hold by construction (u solves K u = f − Bᵀλ,
 // λ stays in its bounds), so the rule checks primal feasibility, complementarity and the
 // duality gap at every evaluation and stops NLopt as soon as they are met.
+#include "backends.hpp"
+
+#ifdef CONTACTQP_HAVE_NLOPT  // set by CMake when NLopt was found (CONTACTQP_WITH_NLOPT)
 #include <nlopt.hpp>
 
 #include <algorithm>
@@ -18,7 +21,6 @@
 #include <vector>
 
 #include "backend_options.hpp"
-#include "backends.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
 #include "qp/norms.hpp"
@@ -234,8 +236,6 @@ Next next_after(nlopt::result code) {
 constexpr double kRestartProgress = 0.5;
 constexpr int kMaxRunsWithoutProgress = 3;
 
-}  // namespace
-
 void check_nlopt_options(const SolveOptions& options) { effective_options(options); }
 
 SolveResult solve_nlopt(const QuadraticProgram& qp, const SolveOptions& options) {
@@ -316,4 +316,21 @@ SolveResult solve_nlopt(const QuadraticProgram& qp, const SolveOptions& options)
   return result;
 }
 
+}  // namespace
 }  // namespace contactqp::detail
+#endif  // CONTACTQP_HAVE_NLOPT
+
+CONTACTQP_BUILTIN(nlopt) {
+  BackendRegistration nlopt;
+  nlopt.name = "nlopt";
+  nlopt.summary = "the dual by a bound-constrained NLopt method (L-BFGS by default)";
+  nlopt.order = 40;
+  nlopt.option_names = {"algorithm", "memory"};
+#ifdef CONTACTQP_HAVE_NLOPT
+  nlopt.check_options = check_nlopt_options;
+  nlopt.solve = solve_nlopt;
+#else
+  nlopt.available = false;
+#endif
+  register_backend(nlopt);
+}

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "backend_options.hpp"
 #include "contactqp/certificate.hpp"
 #include "qp/norms.hpp"
 #include "qp/number_format.hpp"
@@ -251,6 +252,11 @@ SolveResult run_uzawa(const QuadraticProgram& qp, const SolveOptions& options, U
   result.u = std::move(run.u);
   result.lambda = std::move(run.lambda);
   return result;
+}
+
+void check_uzawa_options(const SolveOptions& options) {
+  reject_options(options.backend, options.backend_options,
+                 "its step is --rho or solver.rho (address other backends' options as ipopt.key=value)");
 }
 
 }  // namespace contactqp::detail

@@ -117,4 +117,7 @@ using UzawaLoop = UzawaRun (*)(const UzawaContext& context, const UzawaStep& ste
 // the step from every row when the working-set step does not converge, fill the result.
 SolveResult run_uzawa(const QuadraticProgram& qp, const SolveOptions& options, UzawaVariant variant, UzawaLoop loop);
 
+// Both variants take no backend options (their step is --rho): InputError on a key addressed to them.
+void check_uzawa_options(const SolveOptions& options);
+
 }  // namespace contactqp::detail

@@ -56,7 +56,7 @@ Agreement agreement_for(double tol);  // {1e4 T, 1e5 T, 1e2 T}
 
 struct CompareOptions {
   BuildOptions build;
-  std::vector<Backend> backends;  // in this order; empty: available_backends()
+  std::vector<Backend> backends;  // in this order; empty: available_backends(problem_kind(qp))
 };
 
 // One backend's run within a comparison.

@@ -121,8 +121,9 @@ void add_compare_command(CLI::App& app, int& exit_status) {
       "duality gap is <= 100 T and every pair agrees within 1e4 T in u and 1e5 T in lambda (relative 2-norms, "
       "T = --tol); 1 otherwise; 2 on bad input");
   command->add_option("scene", solve.scene_path, "Scene file (JSON)")->required();
-  refuse_empty(command->add_option("--backends", arguments->backends,
-                                   "Comma-separated backends, e.g. uzawa,ipopt,nlopt (default: every available one)"));
+  refuse_empty(
+      command->add_option("--backends", arguments->backends,
+                          "Comma-separated backends among " + backend_names() + " (default: every available one)"));
   CLI::Option* tol = command->add_option("--tol", solve.tol,
                                          "Relative tolerance T of every backend (default: the scene's solver.tol)");
   refuse_empty(
@@ -134,6 +135,7 @@ void add_compare_command(CLI::App& app, int& exit_status) {
   add_linear_solver_options(*command, solve);
   command->add_option("--backend-option", solve.backend_options,
                       "key=value for every backend, or ipopt.key=value / nlopt.key=value for one (repeatable)");
+  command->footer(backends_help());
   command->callback([arguments, tol, max_iterations, &exit_status] {
     arguments->solve.tol_given = tol->count() > 0;
     arguments->solve.max_iterations_given = max_iterations->count() > 0;

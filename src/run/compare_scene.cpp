@@ -51,6 +51,14 @@ CompareReport compare_scene(const Scene& scene, const CompareOptions& options) {
   CompareReport report;
   auto model = std::make_shared<Model>(build_model(scene, options.build));
   auto qp = std::make_shared<QuadraticProgram>(assemble_qp(*model));
+  if (options.backends.empty()) {
+    // Every available backend that solves this kind of problem (backend.hpp); a backend named
+    // explicitly is refused by solve() instead, naming the ones that do.
+    const ProblemKind kind = problem_kind(*qp);
+    solve_options.erase(std::remove_if(solve_options.begin(), solve_options.end(),
+                                       [&](const SolveOptions& o) { return !backend_supports(o.backend, kind); }),
+                        solve_options.end());
+  }
   report.model = model;
   report.qp = qp;
   report.tol = scene.solver.tol;
