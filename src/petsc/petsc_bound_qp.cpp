@@ -471,7 +471,7 @@ void solve_kept(Work& work, const BoundQp& problem, const BoundQpOptions& option
     input.column_vertex = &problem.coarse_vertex;
     input.vertex_row = &problem.coarse_row;
     input.block_size = problem.coarse_block_size;
-    check(coarse.create(input, work.order, work.first, work.end), "the P1 level");
+    check(coarse.create(input, work.order, work.first, work.end, work.A), "the P1 level");
     qp.coarse_interpolation = coarse.interpolation();
     qp.coarse_modes = coarse.modes();
     for (const auto& [row, i] : mine)

@@ -193,7 +193,7 @@ bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const Linea
     input.column_vertex = &space.column_vertex;
     input.vertex_row = &space.column_dof;
     input.block_size = space.block_size;
-    if ((code = coarse.create(input, order, first_row, end_row))) return fail("the P1 level", code);
+    if ((code = coarse.create(input, order, first_row, end_row, A))) return fail("the P1 level", code);
     data.coarse_interpolation = coarse.interpolation();
     data.coarse_modes = coarse.modes();
   }
@@ -210,8 +210,13 @@ bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const Linea
   KSPSetConvergenceTest(ksp, converged, this, nullptr);
   Stopwatch clock;
   MultigridStatistics multigrid;
-  if ((code = set_up_multigrid(pc, data, &coarse_operator, &multigrid)))
+  // Linear elements: PETSc's GAMG as before (its defaults; the tuned settings measured no
+  // better on these sizes, and LBFGS's inner solves in nlopt are sensitive to the change).
+  if (!data.coarse_interpolation) {
+    PCSetType(pc, PCGAMG);
+  } else if ((code = set_up_multigrid(pc, data, &coarse_operator, &multigrid))) {
     return bad_options("the preconditioner's set-up", code);
+  }
   if ((code = KSPSetFromOptions(ksp))) return bad_options("KSPSetFromOptions", code);
   // A Krylov method other than CG measures its unpreconditioned residual only with the
   // preconditioner on the right: take that side unless the user chose a norm or side.
