@@ -3,10 +3,9 @@
 
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
-#include "contactqp/linear_solver.hpp"
-#include "contactqp/processes.hpp"
 #include "contactqp/run.hpp"
 #include "contactqp/solve.hpp"
+#include "run/problem_in_parts.hpp"
 
 namespace contactqp {
 
@@ -20,15 +19,14 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   phase("mesh");
   auto model = std::make_shared<Model>(build_model(scene, options.build));
   phase("assemble");
-  // Under mpirun the petsc backend takes K in shares: each rank assembles its own elements
-  // (docs/petsc.md), so no rank holds the whole K. Every other solve needs K whole.
-  RankShare share;
-  if (scene.solver.backend == Backend::Petsc && !options.no_contact && process_count() > 1) {
-    start_petsc_runtime(scene.solver.petsc_options);  // MPI, with the user's options on PETSc's command line
-    share.rank = process_rank();
-    share.ranks = process_count();
-  }
-  auto qp = std::make_shared<QuadraticProgram>(assemble_qp(*model, share));
+  // On several processes a backend that solves a problem held in parts takes it so (the petsc
+  // backend under mpirun, docs/petsc.md): no process then holds the whole K. Every other solve
+  // needs K whole.
+  const std::shared_ptr<detail::ProblemInParts> in_parts =
+      options.no_contact ? nullptr : detail::assemble_in_parts(*model, scene.solver);
+  const std::shared_ptr<const QuadraticProgram> qp =
+      in_parts ? std::shared_ptr<const QuadraticProgram>(in_parts, &in_parts->part())
+               : std::make_shared<QuadraticProgram>(assemble_qp(*model));
 
   RunReport report;
   report.model = model;
@@ -37,11 +35,14 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   report.options.observer = nullptr;  // a callback is not data: the report must not keep the caller's closure alive
   report.no_contact = options.no_contact;
   phase("solve");
-  report.result = options.no_contact ? solve_without_contact(*qp, scene.solver) : solve(*qp, scene.solver);
+  report.result = options.no_contact ? solve_without_contact(*qp, scene.solver)
+                  : in_parts         ? in_parts->solve(scene.solver)
+                                     : solve(*qp, scene.solver);
 
   phase("certify");
   Stopwatch clock;
-  report.certificate = certify(*qp, report.result.u, report.result.lambda, report.result.K_factor.get());
+  report.certificate = in_parts ? in_parts->certify(report.result.u, report.result.lambda, report.result.K_factor.get())
+                                : certify(*qp, report.result.u, report.result.lambda, report.result.K_factor.get());
   report.timings.merge(model->timings);
   report.timings.merge(report.result.timings);
   report.timings.add("certify", clock.seconds());

@@ -1,11 +1,13 @@
 // The petsc backend: the contact QP brought to bound form (bound_form.hpp) and solved by PETSc
-// on the distributed matrix (src/qp/petsc_bound_qp.cpp): a primal-dual active-set loop whose
+// on the distributed matrix (petsc_bound_qp.cpp): a primal-dual active-set loop whose
 // steps are KSP solves (CG + GAMG with the rigid-body modes) by default, TAO with
 // method=tao. docs/petsc.md has the design, its measurements and mpirun.
 //
 //   transform   A = QᵀKQ, b = Qᵀf; row i of Bu ≤ g becomes v_i ≤ g_i     (per node, Eigen)
 //   iterate     the bound QP in PETSc, every rank holding its rows of A
 //   recover     u = Q v, λ = μ
+#include "petsc_backend.hpp"
+
 #include <algorithm>
 #include <utility>
 
@@ -14,11 +16,14 @@
 #include "bound_form.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
+#include "mpi.hpp"
 
 namespace contactqp::detail {
 namespace {
 
-// The backend options: method=pdas|tao; for pdas inexact=true|false (loose early steps) and
+// The backend options: method=pdas|tao; for pdas hierarchy=kept|fresh (one multigrid
+// hierarchy for the whole solve, or a set-up per step), p1_start=true|false (kept: the P1
+// contact problem first), inexact=true|false (loose early steps) and, with fresh,
 // reuse_preconditioner=true|false (a step's GAMG kept while its solves stay short).
 BoundQpOptions backend_settings(const SolveOptions& options) {
   BoundQpOptions settings;
@@ -27,25 +32,60 @@ BoundQpOptions backend_settings(const SolveOptions& options) {
       if (value != "pdas" && value != "tao")
         throw InputError(option_field(key), "= \"" + value + "\": not a method of petsc; valid: pdas, tao");
       settings.method = value;
-    } else if (key == "inexact" || key == "reuse_preconditioner") {
+    } else if (key == "hierarchy") {
+      if (value != "kept" && value != "fresh")
+        throw InputError(option_field(key), "= \"" + value + "\": not a hierarchy of petsc; valid: kept, fresh");
+      settings.kept_hierarchy = value == "kept";
+    } else if (key == "inexact" || key == "reuse_preconditioner" || key == "p1_start") {
       if (value != "true" && value != "false" && value != "1" && value != "0")
         throw InputError(option_field(key), "= \"" + value + "\": not true or false");
-      (key == "inexact" ? settings.inexact : settings.reuse_preconditioner) = value == "true" || value == "1";
+      bool& flag = key == "inexact"    ? settings.inexact
+                   : key == "p1_start" ? settings.p1_start
+                                       : settings.reuse_preconditioner;
+      flag = value == "true" || value == "1";
     } else {
-      throw InputError(option_field(key),
-                       "= \"" + value + "\": not an option of petsc; valid: method, inexact, reuse_preconditioner");
+      throw InputError(option_field(key), "= \"" + value +
+                                              "\": not an option of petsc; valid: method, hierarchy, p1_start, "
+                                              "inexact, reuse_preconditioner");
     }
   }
   return settings;
 }
 
+// K⁻¹ r = Q A⁻¹ Qᵀ r (A = QᵀKQ): the contact solve's solver of A serves certify()'s θ, so that
+// the solve sets up one preconditioner in all.
+class SolverOfK final : public LinearSolver {
+ public:
+  SolverOfK(std::shared_ptr<const LinearSolver> of_A, std::shared_ptr<const SparseMatrix> Q)
+      : of_A_(std::move(of_A)), Q_(std::move(Q)) {}
+  bool ok() const override { return of_A_->ok(); }
+  const std::string& message() const override { return of_A_->message(); }
+  int size() const override { return of_A_->size(); }
+  VectorXd solve(const VectorXd& b) const override { return *Q_ * of_A_->solve(VectorXd(Q_->transpose() * b)); }
+  LinearSolverStatistics statistics() const override { return of_A_->statistics(); }
+  std::vector<std::string> warnings() const override { return of_A_->warnings(); }
+
+ protected:
+  std::shared_ptr<const LinearSolver> scaled_solver(double c) const override {
+    return std::make_shared<SolverOfK>(of_A_->scaled(c), Q_);
+  }
+
+ private:
+  std::shared_ptr<const LinearSolver> of_A_;
+  std::shared_ptr<const SparseMatrix> Q_;
+};
+
 // The relative KKT residual of certificate.hpp without stationarity (which the inner solves
-// hold): primal violation / L, negative multipliers / F, complementarity / (F L).
-double relative_residual(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& mu) {
+// hold): primal violation / L, negative multipliers / F, complementarity / (F L). K u sums the
+// ranks' products when qp.K is a share.
+double relative_residual(const QuadraticProgram& qp, const MatrixLayout& layout, const VectorXd& u,
+                         const VectorXd& mu) {
   if (mu.size() == 0) return 0;
   const VectorXd lambda = mu.cwiseMax(0.0);
   const VectorXd w = qp.g - qp.B * u;
-  const double L = length_scale(qp, u), F = force_scale(qp, u, lambda);
+  VectorXd Ku = qp.K * u;
+  if (layout.share) sum_over_ranks(Ku.data(), Ku.size());
+  const double L = length_scale(qp, u), F = force_scale(qp.f, Ku, qp.B.transpose() * lambda);
   const double violation = std::max(0.0, -w.minCoeff());
   const double negative = std::max(0.0, -mu.minCoeff());
   const double complementarity = lambda.cwiseProduct(w).cwiseAbs().maxCoeff();
@@ -55,11 +95,13 @@ double relative_residual(const QuadraticProgram& qp, const VectorXd& u, const Ve
 
 void check_petsc_options(const SolveOptions& options) { backend_settings(options); }
 
-SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options) {
+}  // namespace
+
+SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, const SolveOptions& options) {
   SolveResult result;
   Stopwatch clock;
   BoundForm form;
-  if (!make_bound_form(qp, form, result.message)) {
+  if (!make_bound_form(qp, layout, form, result.message)) {
     result.status = Status::NumericalError;
     result.u = VectorXd::Zero(qp.n_dofs());
     result.lambda = VectorXd::Zero(qp.n_constraints());
@@ -70,19 +112,21 @@ SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options)
   BoundQpOptions settings = backend_settings(options);
   settings.tol = options.tol;
   settings.max_iterations = options.max_iterations;
-  settings.petsc_options = options.petsc_options;
+  settings.petsc_options = petsc_options_of(options.library_options);
   settings.verbose = options.verbose;
   settings.residual = [&](const VectorXd& v, const VectorXd& mu) {
-    return relative_residual(qp, VectorXd(form.Q * v), mu);
+    return relative_residual(qp, layout, VectorXd(form.Q * v), mu);
   };
   if (options.observer)
     settings.observer = [&](int k, const VectorXd& v, const VectorXd& mu) {
       options.observer(k, VectorXd(form.Q * v), mu);
     };
   const BoundQpResult solved = solve_bound_qp_petsc(std::move(form.problem), settings);
-  result.timings.add("factorize", solved.setup_seconds);
-  result.timings.add("iterate", solved.iterate_seconds);
-  result.timings.add("solve", solved.iterate_seconds);
+  // factorize: the matrix into PETSc and the preconditioner's set-up (the kept hierarchy's, or
+  // none when every step sets up its own inside the loop); iterate and solve: the loop.
+  result.timings.add("factorize", solved.setup_seconds + solved.pc_setup_seconds);
+  result.timings.add("iterate", solved.iterate_seconds - solved.pc_setup_seconds);
+  result.timings.add("solve", solved.iterate_seconds - solved.pc_setup_seconds);
 
   result.u = form.Q * solved.v;
   result.lambda = solved.mu;
@@ -92,13 +136,18 @@ SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options)
   result.diagnostics["krylov_iterations"] = static_cast<double>(solved.krylov_iterations);
   result.diagnostics["linear_solves"] = static_cast<double>(solved.linear_solves);
   if (solved.preconditioner_setups > 0) result.diagnostics["preconditioner_setups"] = solved.preconditioner_setups;
+  if (solved.solver_of_A) {
+    result.diagnostics["preconditioner_setup_seconds"] = solved.pc_setup_seconds;
+    result.diagnostics["p1_start_steps"] = solved.p1_steps;
+    result.diagnostics["p1_start_krylov_iterations"] = static_cast<double>(solved.p1_krylov_iterations);
+  }
   result.diagnostics["active_constraints"] = solved.active;
   result.diagnostics["kkt_residual"] = solved.residual;
   result.diagnostics["petsc_matrix_mb_per_rank"] = solved.matrix_bytes / 1048576.0;
   result.diagnostics["petsc_memory_mb_per_rank"] = solved.petsc_bytes / 1048576.0;
   // What this rank assembled: the whole K, or under mpirun its share (qp.hpp); rank 0's in the
   // result files.
-  result.diagnostics["k_rank_share"] = qp.K_is_rank_share ? 1 : 0;
+  result.diagnostics["k_rank_share"] = layout.share ? 1 : 0;
   result.diagnostics["k_nonzeros_this_rank"] = static_cast<double>(qp.K.nonZeros());
 
   const std::string how = solved.method + "; " + std::to_string(solved.iterations) + " outer steps, " +
@@ -107,7 +156,8 @@ SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options)
                                ? ", " + std::to_string(solved.preconditioner_setups) + " preconditioner set-ups"
                                : std::string()) +
                           "; " + std::to_string(qp.n_constraints()) + " candidate rows, " +
-                          std::to_string(solved.active) + " in contact; A " +
+                          std::to_string(solved.active) + " in contact" +
+                          (solved.multigrid.empty() ? std::string() : "; multigrid " + solved.multigrid) + "; A " +
                           short_number(solved.matrix_bytes / 1048576.0) + " MiB per rank" +
                           (options.verbose ? "; PETSc memory per rank " + short_number(solved.petsc_bytes / 1048576.0) +
                                                  " MiB (A, its working copy and the preconditioner)"
@@ -121,16 +171,20 @@ SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options)
   // factor is what the petsc backend is there to avoid.
   if (options.K_factor) {
     result.K_factor = options.K_factor;
+  } else if (solved.solver_of_A && solved.solver_of_A->ok()) {
+    result.K_factor =
+        std::make_shared<SolverOfK>(solved.solver_of_A, std::make_shared<const SparseMatrix>(std::move(form.Q)));
   } else {
-    SolveOptions petsc_options = options;
-    petsc_options.linear_solver = LinearSolverKind::Petsc;
-    std::string message;
-    result.K_factor = factor_of_K(qp, petsc_options, result.timings, message);
+    LinearSolverOptions settings_of_K = linear_solver_options(qp, options);
+    settings_of_K.kind = LinearSolverKind::Petsc;
+    Stopwatch factor_clock;
+    result.K_factor = make_petsc_solver(qp.K, settings_of_K, layout);
+    result.timings.add("factorize", factor_clock.seconds());
+    if (!result.K_factor->ok()) result.K_factor.reset();  // certify() then reports θ unavailable
   }
   return result;
 }
 
-}  // namespace
 }  // namespace contactqp::detail
 
 CONTACTQP_BUILTIN(petsc) {
@@ -138,9 +192,14 @@ CONTACTQP_BUILTIN(petsc) {
   petsc.name = "petsc";
   petsc.summary = "the bound form solved by PETSc (active set with KSP solves, or TAO), under mpirun too";
   petsc.order = 60;
-  petsc.option_names = {"method", "inexact", "reuse_preconditioner"};
-  petsc.available = linear_solver_available(LinearSolverKind::Petsc);
+  petsc.option_names = {"method", "hierarchy", "p1_start", "inexact", "reuse_preconditioner"};
   petsc.check_options = check_petsc_options;
-  petsc.solve = solve_petsc;
+#ifdef CONTACTQP_HAVE_PETSC  // set by CMake when PETSc was found (CONTACTQP_WITH_PETSC)
+  petsc.solve = [](const QuadraticProgram& qp, const SolveOptions& options) {
+    return solve_bound_form(qp, MatrixLayout{}, options);  // K whole on every rank
+  };
+#else
+  petsc.available = false;
+#endif
   register_backend(petsc);
 }
