@@ -35,6 +35,7 @@ QuadraticProgram scaled_qp(const QuadraticProgram& qp, const QpScaling& scaling)
   scaled.g = qp.g / scaling.displacement;
   scaled.rows = qp.rows;
   scaled.near_null_space = qp.near_null_space;  // directions: unchanged by the scaling of K
+  scaled.coarse_space = qp.coarse_space;        // an interpolation: unchanged too
   return scaled;
 }
 

@@ -21,21 +21,15 @@ void check_output_path(const std::string& path, const std::string& field);
 // file or the complete new one, never a half-written one. Throws std::runtime_error on failure
 // (and removes the temporary file).
 void write_file_atomically(const std::string& path, const std::string& content);
-// The same in steps, for files that appear together or not at all (the pieces of a .pvtu, one
-// per process): the content in a temporary file beside `path` (its name returned; throws as
-// above), then renamed over `path` (throws, removing it, when that fails), or removed.
-std::string write_temporary_file(const std::string& path, const std::string& content);
-void commit_temporary_file(const std::string& temporary, const std::string& path);
-void discard_temporary_file(const std::string& temporary);
 
-// Everything one solve produced, for the result file and the summary. run_scene() (run.hpp)
-// makes one. The report owns what it holds, the model and the QP included (shared, read-only),
-// so that it outlives the scene it came from, e.g. as a Python object.
 // The whole problem's size, whichever process holds what of it.
 struct ProblemSize {
   long long nodes = 0, elements = 0, dofs = 0, constraints = 0;
 };
 
+// Everything one solve produced, for the result file and the summary. run_scene() (run.hpp)
+// makes one. The report owns what it holds, the model and the QP included (shared, read-only),
+// so that it outlives the scene it came from, e.g. as a Python object.
 struct RunReport {
   std::shared_ptr<const Model> model;
   std::shared_ptr<const QuadraticProgram> qp;

@@ -2,14 +2,18 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
+#include <memory>
+#include <vector>
 
 #include "commands.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/processes.hpp"
 #include "contactqp/run.hpp"
+#include "io/temporary_file.hpp"
 #include "phase_memory.hpp"
 #include "progress.hpp"
 #include "run/distributed_run.hpp"
+#include "run/phases.hpp"
 
 namespace contactqp::cli {
 
@@ -68,6 +72,7 @@ int run_solve(const SolveArguments& arguments) {
       arguments.scene_path,
       {{"--json", arguments.json_path}, {"--csv", arguments.csv_path}, {"--vtu", arguments.vtu_path}});
   require(arguments.max_elements > 0, "--max-elements", arguments.max_elements, "must be positive");
+  detail::begin_phase("read");
   Scene scene = load_scene(arguments.scene_path);
   apply_overrides(arguments, scene.solver);
 
@@ -100,12 +105,26 @@ int run_solve(const SolveArguments& arguments) {
     };
     report = run_scene(scene, options);
     // The output files: the CSV and the ParaView file, timed as "write", then the JSON, which
-    // records that time.
+    // records that time. Each is written beside its target and renamed into place only once
+    // every rank has got that far: a rank that failed meanwhile leaves no file.
+    detail::begin_phase("write");
     progress.set("write", 0);
     if (arguments.phase_memory) memory.start("write");
+    std::vector<std::unique_ptr<detail::TemporaryFile>> staged;
+    const auto stage = [&staged](const std::string& path, const std::string& content) {
+      staged.push_back(std::make_unique<detail::TemporaryFile>(path));
+      staged.back()->write(content);
+    };
+    const auto commit = [&staged] {
+      detail::checkpoint();
+      for (const auto& file : staged) file->commit();
+    };
     Stopwatch clock;
+    // A distributed run's pieces of the ParaView file, one per rank (collective; they and the
+    // .pvtu appear together or not at all, src/distributed/distributed_post.cpp).
     if (report.write_pieces && !arguments.vtu_path.empty()) report.write_pieces(arguments.vtu_path);
     if (!writer) {
+      commit();  // meets rank 0's, where it renames its files into place
       // Each rank's own peaks, one line each (what a rank holds is the point of a distributed run).
       if (arguments.phase_memory) std::cerr << memory.finish(" (rank " + std::to_string(process_rank()) + ")");
       return report.result.status == Status::Converged ? 0 : 1;
@@ -116,7 +135,7 @@ int run_solve(const SolveArguments& arguments) {
     int written = report.write_pieces && !arguments.vtu_path.empty();
     for (const auto& [path, document] : files) {
       if (path->empty() || (report.write_pieces && path == &arguments.vtu_path)) continue;
-      write_file_atomically(*path, document(report));
+      stage(*path, document(report));
       progress.set("write", static_cast<double>(++written) / n_files);
     }
     // "write" goes before "total", which then covers it too (all but the JSON's own writing).
@@ -127,7 +146,8 @@ int run_solve(const SolveArguments& arguments) {
     timings.add("write", write_seconds);
     timings.add("total", report.timings.get("total") + write_seconds);
     report.timings = timings;
-    if (!arguments.json_path.empty()) write_file_atomically(arguments.json_path, result_json(report));
+    if (!arguments.json_path.empty()) stage(arguments.json_path, result_json(report));
+    commit();
     if (arguments.phase_memory) memory_line = memory.finish();
   }
   std::cerr << memory_line;  // after the progress line is erased
@@ -147,9 +167,17 @@ void add_backend_options(const std::vector<std::string>& pairs, SolveOptions& op
   }
 }
 
+CLI::Option* refuse_empty(CLI::Option* option) {
+  const std::string name = option->get_name();
+  return option->each([name](const std::string& value) {
+    if (value.empty()) throw InputError(name, "= \"\": must not be empty (leave the option out for the default)");
+  });
+}
+
 void add_linear_solver_options(CLI::App& command, SolveArguments& arguments) {
-  command.add_option("--linear-solver", arguments.linear_solver,
-                     "Solver of K for the backends: cholmod (default, direct) or petsc (KSP, CG + GAMG by default)");
+  refuse_empty(command.add_option(
+      "--linear-solver", arguments.linear_solver,
+      "Solver of K for the backends: cholmod (default, direct) or petsc (KSP, CG + GAMG by default)"));
   command
       .add_option("--petsc-options", arguments.petsc_options,
                   "PETSc options database entries, passed through unchanged, e.g. --petsc-options=\"-ksp_type minres\" "
@@ -162,17 +190,19 @@ void add_solve_command(CLI::App& app, int& exit_status) {
   CLI::App* command =
       app.add_subcommand("solve", "Solve one scene and report contact pressure, certificate and Hertz errors");
   command->add_option("scene", arguments->scene_path, "Scene file (JSON)")->required();
-  command->add_option("--backend", arguments->backend,
-                      "Optimisation backend: " + backend_names() + " (overrides solver.backend)");
+  refuse_empty(command->add_option("--backend", arguments->backend,
+                                   "Optimisation backend: " + backend_names() + " (overrides solver.backend)"));
   CLI::Option* tol =
       command->add_option("--tol", arguments->tol, "Relative tolerance of the stopping rule (default 1e-8)");
-  command->add_option("--rho", arguments->rho, "Uzawa step: auto, a number, or a fraction of rho_max like 0.5x");
+  refuse_empty(
+      command->add_option("--rho", arguments->rho, "Uzawa step: auto, a number, or a fraction of rho_max like 0.5x"));
   CLI::Option* max_iterations =
       command->add_option("--max-iterations", arguments->max_iterations, "Iteration limit (default 10000)");
-  command->add_option("--json", arguments->json_path, "Write the result JSON here");
-  command->add_option("--csv", arguments->csv_path, "Write the contact pressure profile CSV here");
-  command->add_option("--vtu", arguments->vtu_path,
-                      "Write the mesh, displacement, stresses, pressure and gap for ParaView (.vtu) here");
+  refuse_empty(command->add_option("--json", arguments->json_path, "Write the result JSON here"));
+  refuse_empty(command->add_option("--csv", arguments->csv_path, "Write the contact pressure profile CSV here"));
+  refuse_empty(
+      command->add_option("--vtu", arguments->vtu_path,
+                          "Write the mesh, displacement, stresses, pressure and gap for ParaView (.vtu) here"));
   command->add_option("--max-elements", arguments->max_elements, "Refuse meshes with more triangles (default 4000000)");
   command->add_option("--backend-option", arguments->backend_options,
                       "key=value passed to the backend (repeatable); ipopt.key=value addresses one backend");
@@ -180,7 +210,8 @@ void add_solve_command(CLI::App& app, int& exit_status) {
   command->add_flag("--phase-memory", arguments->phase_memory,
                     "Print the peak resident memory of each phase on stderr (Linux /proc)");
   command->add_flag("--quiet", arguments->quiet, "No progress line on stderr (shown on a terminal after 2 s)");
-  command->add_option("--ordering", arguments->ordering, "Fill-reducing ordering of K: amd (default), metis or auto");
+  refuse_empty(command->add_option("--ordering", arguments->ordering,
+                                   "Fill-reducing ordering of K: amd (default), metis or auto"));
   add_linear_solver_options(*command, *arguments);
   command->add_flag("--distributed", arguments->distributed,
                     "Each process holds only its part of the mesh, model and output (petsc backend; under mpirun "

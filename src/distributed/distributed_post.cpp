@@ -6,10 +6,12 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <unordered_map>
 
 #include "contact/contact.hpp"
+#include "io/temporary_file.hpp"
 #include "rank_agreement.hpp"
 #include "world.hpp"
 
@@ -259,13 +261,13 @@ void write_pvtu(const std::string& pvtu_path, const Mesh& mesh, const std::vecto
   const std::string stem = target.stem().string();
   const auto piece_name = [&stem](int r) { return stem + "_" + std::to_string(r) + ".vtu"; };
   const std::string piece = (target.parent_path() / piece_name(rank)).string();
-  std::string temporary;
+  std::unique_ptr<TemporaryFile> staged;  // removed unless committed
   try {
-    agree_on_step([&] { temporary = write_temporary_file(piece, vtu_piece(mesh, arrays)); });
     agree_on_step([&] {
-      commit_temporary_file(temporary, piece);
-      temporary.clear();
+      staged = std::make_unique<TemporaryFile>(piece);
+      staged->write(vtu_piece(mesh, arrays));
     });
+    agree_on_step([&] { staged->commit(); });
     agree_on_rank_zero([&] {
       std::vector<std::string> pieces;
       for (int r = 0; r < ranks; ++r) pieces.push_back(piece_name(r));
@@ -273,7 +275,7 @@ void write_pvtu(const std::string& pvtu_path, const Mesh& mesh, const std::vecto
     });
   } catch (...) {
     // Some rank could not write: no piece of this run stays.
-    if (!temporary.empty()) discard_temporary_file(temporary);
+    staged.reset();
     std::error_code ignored;
     fs::remove(piece, ignored);
     throw;

@@ -8,7 +8,10 @@
 // exit status 2 included, ends PETSc and MPI in order.
 #include "petsc_solver.hpp"
 
+#include "coarse_level.hpp"
+#include "ksp_helpers.hpp"
 #include "mpi.hpp"
+#include "multigrid.hpp"
 #include "petsc_matrix.hpp"
 #include "petsc_runtime.hpp"
 #include "qp/builtins.hpp"
@@ -36,9 +39,6 @@ namespace {
 // backend's right-hand side b = f − Bᵀλ has ‖b‖∞ ≤ 2F; with ‖r‖∞ ≤ ‖r‖₂ the solve leaves a
 // stationarity of at most 2 · kInnerFraction · tol = tol / 10, so the certificate holds at tol.
 constexpr double kInnerFraction = 1e-3;
-// Round-off: a residual this small relative to ‖A‖∞‖x‖∞ is as good as a backward-stable
-// direct solve gets, whatever the rule asks (CG then stagnates instead of converging).
-constexpr double kRoundOff = 100 * 2.220446049250313e-16;
 // Iterations of one KSP solve before it counts as not converging (-ksp_max_it overrides).
 constexpr PetscInt kMaxKrylovIterations = 10000;
 
@@ -71,7 +71,9 @@ struct PetscSolver::Impl {
   Vec x = nullptr, b = nullptr;
   VecScatter to_all = nullptr;  // the distributed solution onto every rank (one rank: a copy)
   Vec x_all = nullptr;
-  void* default_test = nullptr;  // KSPConvergedDefault's context: the user's -ksp_rtol etc.
+  CoarseLevel coarse;             // quadratic elements: the P1 level (coarse_level.hpp)
+  Mat coarse_operator = nullptr;  // PᵀAP, when the P1 level is used
+  void* default_test = nullptr;   // KSPConvergedDefault's context: the user's -ksp_rtol etc.
   int n = 0;
   PetscInt first_row = 0, end_row = 0;  // the rows this rank owns
   RowOrder order;                       // the unknowns' rows in A
@@ -96,6 +98,7 @@ struct PetscSolver::Impl {
     if (x) VecDestroy(&x);
     if (b) VecDestroy(&b);
     if (ksp) KSPDestroy(&ksp);
+    if (coarse_operator) MatDestroy(&coarse_operator);
     if (A) MatDestroy(&A);
     if (default_test) KSPConvergedDefaultDestroy(default_test);
   }
@@ -119,18 +122,7 @@ struct PetscSolver::Impl {
   static PetscErrorCode converged(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason, void* context) {
     Impl& impl = *static_cast<Impl*>(context);
     PetscCall(KSPConvergedDefault(ksp, it, rnorm, reason, impl.default_test));
-    if (*reason != KSP_CONVERGED_ITERATING) return 0;
-    double target = impl.target;
-    // The floor needs ‖x‖∞ (free for CG: its iterate is stored), looked at only near the target.
-    if (rnorm > target && rnorm <= 1e6 * target) {
-      Vec x = nullptr;
-      PetscReal x_norm = 0;
-      PetscCall(KSPBuildSolution(ksp, nullptr, &x));
-      PetscCall(VecNorm(x, NORM_INFINITY, &x_norm));
-      target = std::max(target, kRoundOff * impl.A_norm * x_norm);
-    }
-    if (rnorm <= target) *reason = KSP_CONVERGED_ATOL;
-    return 0;
+    return inner_stopping_rule(ksp, rnorm, impl.target, impl.A_norm, reason);
   }
 
   bool set_up(const Eigen::SparseMatrix<double>& K, const LinearSolverOptions& options, const MatrixLayout& layout);
@@ -176,17 +168,41 @@ bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const Linea
     if (code) return fail("MatSetNearNullSpace", code);
   }
 
-  // CG + GAMG by default; the options database may change any of it.
+  // Quadratic elements: the P1 level (P2 → P1 interpolation and its rigid-body modes).
+  MultigridData data;
+  data.A = A;
+  const CoarseSpace& space = settings.coarse_space;
+  if (!space.empty() && space.interpolation.rows() == n) {
+    CoarseLevelInput input;
+    input.interpolation = &space.interpolation;
+    input.modes = &space.near_null_space;
+    input.column_vertex = &space.column_vertex;
+    input.vertex_row = &space.column_dof;
+    input.block_size = space.block_size;
+    if ((code = coarse.create(input, order, first_row, end_row, A))) return fail("the P1 level", code);
+    data.coarse_interpolation = coarse.interpolation();
+    data.coarse_modes = coarse.modes();
+  }
+
+  // CG + the multigrid of multigrid.hpp by default; the options database may change any of it.
   if ((code = KSPCreate(PETSC_COMM_WORLD, &ksp))) return fail("KSPCreate", code);
   KSPSetOperators(ksp, A, A);
   KSPSetType(ksp, KSPCG);
   PC pc = nullptr;
   KSPGetPC(ksp, &pc);
-  PCSetType(pc, PCGAMG);
   KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED);                        // the rule bounds the true residual
   KSPSetTolerances(ksp, 0.0, 0.0, PETSC_DEFAULT, kMaxKrylovIterations);  // only the inner rule stops
   KSPConvergedDefaultCreate(&default_test);
   KSPSetConvergenceTest(ksp, converged, this, nullptr);
+  Stopwatch clock;
+  MultigridStatistics multigrid;
+  // Linear elements: PETSc's GAMG as before (its defaults; the tuned settings measured no
+  // better on these sizes, and LBFGS's inner solves in nlopt are sensitive to the change).
+  if (!data.coarse_interpolation) {
+    PCSetType(pc, PCGAMG);
+  } else if ((code = set_up_multigrid(pc, data, &coarse_operator, &multigrid))) {
+    return bad_options("the preconditioner's set-up", code);
+  }
   if ((code = KSPSetFromOptions(ksp))) return bad_options("KSPSetFromOptions", code);
   // A Krylov method other than CG measures its unpreconditioned residual only with the
   // preconditioner on the right: take that side unless the user chose a norm or side.
@@ -198,7 +214,6 @@ bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const Linea
   PetscStrcmp(type, KSPCG, &is_cg);
   if (!is_cg && !norm_given && !side_given) KSPSetPCSide(ksp, PC_RIGHT);
 
-  Stopwatch clock;
   code = KSPSetUp(ksp);
   if (code == PETSC_ERR_SUP && !norm_given && !side_given) {
     // Some methods (MINRES, ...) measure only the preconditioned residual: take PETSc's own
@@ -215,7 +230,13 @@ bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const Linea
   KSPGetPC(ksp, &pc);
   PCGetType(pc, &pc_type);
   KSPGetType(ksp, &type);
-  method = std::string(type ? type : "?") + " + " + (pc_type ? pc_type : "?") +
+  std::ostringstream levels;
+  levels.precision(3);
+  if (multigrid.levels > 0)
+    levels << " (" << multigrid.levels << " levels, grid complexity " << multigrid.grid_complexity
+           << ", operator complexity " << multigrid.operator_complexity << ")";
+  method = std::string(type ? type : "?") + " + " +
+           (multigrid.method.empty() ? (pc_type ? pc_type : "?") : multigrid.method) + levels.str() +
            (modes.cols() > 0 ? ", " + std::to_string(modes.cols()) + " near-null modes" : "") +
            (preconditioned_norm ? ", preconditioned residual norm" : "");
 
@@ -277,17 +298,8 @@ Eigen::VectorXd PetscSolver::solve(const Eigen::VectorXd& rhs, const Eigen::Vect
   if (code) {
     m.fail("KSPSolve", code);
   } else if (reason < 0) {
-    const char* name = nullptr;
-    KSPGetConvergedReasonString(m.ksp, &name);
-    PetscReal residual = 0;
-    KSPGetResidualNorm(m.ksp, &residual);
-    std::ostringstream text;
-    text.precision(3);
-    // KSPGetConvergedReasonString drops the enum's KSP_ prefix: the name as PETSc's manual has it.
-    text << "the PETSc KSP did not converge: KSP_" << (name ? name : "unknown reason") << " after " << iterations
-         << " iterations at residual " << residual << " (target " << m.target << ")";
     m.ok = false;
-    m.message = text.str();
+    m.message = reason_text(m.ksp, iterations, m.target);
   }
   if (!m.checked_unused && PetscRuntime::instance(m.options).generation() == m.generation) {
     m.checked_unused = true;
@@ -296,12 +308,7 @@ Eigen::VectorXd PetscSolver::solve(const Eigen::VectorXd& rhs, const Eigen::Vect
   }
 
   // Every rank receives the whole solution (the backends iterate on full vectors).
-  VecScatterBegin(m.to_all, m.x, m.x_all, INSERT_VALUES, SCATTER_FORWARD);
-  VecScatterEnd(m.to_all, m.x, m.x_all, INSERT_VALUES, SCATTER_FORWARD);
-  const PetscScalar* all = nullptr;
-  VecGetArrayRead(m.x_all, &all);
-  Eigen::VectorXd out = m.order.to_dofs(all, m.n) / scale_;
-  VecRestoreArrayRead(m.x_all, &all);
+  Eigen::VectorXd out = gather_whole(m.to_all, m.x, m.x_all, m.order, m.n) / scale_;
   if (!out.allFinite()) {
     if (m.ok) {
       m.ok = false;
