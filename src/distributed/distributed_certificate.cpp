@@ -135,7 +135,7 @@ DistributedSolution solution_of(const DistributedModel& model, const Distributed
 }
 
 CertificateTerms distributed_certificate_terms(const DistributedModel& model, const DistributedBoundQp& qp,
-                                               const DistributedSolution& solution, DistributedSolverOfA* solver,
+                                               const DistributedSolution& solution, SolverOfA* solver,
                                                double tol) {
   const Eigen::VectorXd Ku = K_times_u(model, qp, solution.u);
   Eigen::VectorXd r;

@@ -1,10 +1,8 @@
-// The petsc backend's primal-dual active-set loop on a distributed bound QP
-// (distributed_problem.hpp): every rank holds its rows of A, b, v and its own bounds and
-// multipliers, nothing whole (no VecScatterCreateToAll). The method is petsc_bound_qp.cpp's —
-// CG + GAMG steps on the full-size matrix with the active rows and columns fixed, inexact steps,
-// an optional kept preconditioner — with the active set and its history decided by reductions.
-// (The seam with the solver's owner: /work/coord/seam-petsc.md; this is the loop ported to
-// local data, for the solver's owner to tune.)
+// The petsc backend's contact solve on a distributed bound QP (distributed_problem.hpp): every
+// rank holds its rows of A, b and its own bounds and multipliers, nothing whole. The method is
+// the petsc backend's own (bound_pdas.hpp: the primal-dual active-set loop with one multigrid
+// hierarchy kept for the whole contact solve, a P1 level for quadratic elements, inexact steps);
+// this file hands the distributed problem to it and agrees its outcome over the ranks.
 #pragma once
 
 #include <petscksp.h>
@@ -16,6 +14,7 @@
 
 #include "contactqp/qp.hpp"
 #include "distributed_problem.hpp"
+#include "petsc/bound_pdas.hpp"
 
 namespace contactqp::detail {
 
@@ -23,20 +22,10 @@ struct DistributedPdasOptions {
   double tol = 1e-8;
   int max_iterations = 10000;
   std::string petsc_options;
-  bool inexact = true;                // loose KSP solves while the active set changes
-  bool reuse_preconditioner = false;  // keep a step's GAMG for the next steps (docs/petsc.md)
+  bool inexact = true;  // loose CG solves while the active set changes
   // The relative KKT residual without stationarity (certificate.hpp) of this rank's v and μ (one
   // per own bound); collective: returns the global value.
   std::function<double(Vec v, const std::vector<double>& mu)> residual;
-};
-
-// A solver of A for the certificate's one solve (θ): the loop's KSP, A as operator, its last
-// preconditioner kept (no new set-up). Collective.
-class DistributedSolverOfA {
- public:
-  virtual ~DistributedSolverOfA() = default;
-  // x = A⁻¹ rhs to the inner rule for `force` (‖r‖₂ ≤ 1e-3 · tol · force); false on failure.
-  virtual bool solve(Vec rhs, Vec x, double force) = 0;
 };
 
 struct DistributedPdasResult {
@@ -51,13 +40,16 @@ struct DistributedPdasResult {
   double residual = 0;
   double setup_seconds = 0, iterate_seconds = 0;
   std::string method;
-  double matrix_bytes = 0, petsc_bytes = 0;  // the largest rank's
+  double matrix_bytes = 0, petsc_bytes = 0;  // the largest rank's: A, and A with the hierarchy
   std::vector<std::string> warnings;
-  std::shared_ptr<DistributedSolverOfA> solver_of_A;
+  // The loop's hierarchy, for the certificate's one solve with A (θ): no second set-up.
+  std::shared_ptr<SolverOfA> solver_of_A;
 
   DistributedPdasResult() = default;
   DistributedPdasResult(DistributedPdasResult&& other) noexcept;
   DistributedPdasResult& operator=(DistributedPdasResult&& other) noexcept;
+  DistributedPdasResult(const DistributedPdasResult&) = delete;
+  DistributedPdasResult& operator=(const DistributedPdasResult&) = delete;
   ~DistributedPdasResult();
 };
 

@@ -22,18 +22,20 @@ namespace contactqp::detail {
 namespace {
 
 // The petsc backend's options (petsc_backend.cpp reads and checks the same keys; they were
-// validated before this runs): unaddressed keys and "petsc.key".
+// validated before this runs): unaddressed keys and "petsc.key". A distributed run solves by the
+// kept hierarchy's pdas (hierarchy=kept), without the P1 start (distributed_pdas.cpp says why).
 DistributedPdasOptions pdas_options(const SolveOptions& options) {
   DistributedPdasOptions out;
   out.tol = options.tol;
   out.max_iterations = options.max_iterations;
   out.petsc_options = petsc_options_of(options.library_options);
   for (const auto& [key, value] : options_for(Backend::Petsc, options.backend_options)) {
-    const bool yes = value == "true" || value == "1";
-    if (key == "inexact") out.inexact = yes;
-    if (key == "reuse_preconditioner") out.reuse_preconditioner = yes;
+    if (key == "inexact") out.inexact = value == "true" || value == "1";
     if (key == "method" && value != "pdas")
       throw InputError("backend option method", "= \"" + value + "\": a distributed run (mpirun) solves by pdas only");
+    if (key == "hierarchy" && value != "kept")
+      throw InputError("backend option hierarchy",
+                       "= \"" + value + "\": a distributed run (mpirun) keeps one hierarchy (hierarchy=kept)");
   }
   return out;
 }
