@@ -135,8 +135,7 @@ DistributedSolution solution_of(const DistributedModel& model, const Distributed
 }
 
 CertificateTerms distributed_certificate_terms(const DistributedModel& model, const DistributedBoundQp& qp,
-                                               const DistributedSolution& solution, SolverOfA* solver,
-                                               double tol) {
+                                               const DistributedSolution& solution, SolverOfA* solver, double tol) {
   const Eigen::VectorXd Ku = K_times_u(model, qp, solution.u);
   Eigen::VectorXd r;
   CertificateTerms terms = row_terms(model, qp, solution.u, Ku, solution.lambda, solution.lambda, &r);

@@ -29,8 +29,7 @@ DistributedSolution solution_of(const DistributedModel& model, const Distributed
 // The terms of this rank's rows, reduced over the ranks (collective); with `solver`, θ's
 // rᵀK⁻¹r by one solve with A.
 CertificateTerms distributed_certificate_terms(const DistributedModel& model, const DistributedBoundQp& qp,
-                                               const DistributedSolution& solution, SolverOfA* solver,
-                                               double tol);
+                                               const DistributedSolution& solution, SolverOfA* solver, double tol);
 
 // The petsc backend's stopping test on distributed data (solvers/petsc.cpp's): primal violation
 // / L, negative multipliers / F, complementarity / (F L), without stationarity (the inner solves

@@ -34,8 +34,8 @@ PetscErrorCode null_space_of(const std::vector<Vec>& vectors, bool orthonormalis
     PetscReal norm = 0;
     PetscCall(VecNormalize(copies[k], &norm));
   }
-  PetscCall(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(copies.size()), copies.data(),
-                               space));
+  PetscCall(
+      MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(copies.size()), copies.data(), space));
   for (Vec& copy : copies) PetscCall(VecDestroy(&copy));  // the space holds its references
   return 0;
 }

@@ -17,6 +17,7 @@
 #include "qp/builtins.hpp"
 #include "qp/number_format.hpp"
 #include "run/distributed_run.hpp"
+#include "run/phases.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -89,12 +90,15 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
   Stopwatch total;
   validate_options(scene.solver);
   const DistributedPdasOptions settings = pdas_options(scene.solver);
-  start_process_runtime(scene.solver.library_options);  // MPI, with the user's options on PETSc's command line
   const auto phase = [&options](const char* name) {
+    begin_phase(name);  // where the ranks agree that none failed (run/phases.hpp)
     if (options.on_phase) options.on_phase(name);
   };
 
   phase("mesh");
+  // PETSc, with the user's options on its command line: after the agreement above, since
+  // starting it is collective (a rank that failed before would leave the others waiting in it).
+  start_process_runtime(scene.solver.library_options);
   auto model = std::make_shared<DistributedModel>(build_distributed_model(scene, options.build, phase));
   RunReport report;
   report.options = scene.solver;
