@@ -14,6 +14,7 @@
 #include "bound_form.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
+#include "problem_kinds.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -58,6 +59,7 @@ double relative_residual(const QuadraticProgram& qp, const VectorXd& u, const Ve
 void check_petsc_options(const SolveOptions& options) { backend_settings(options); }
 
 SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options) {
+  require_supported(Backend::Petsc, qp);  // friction: InputError before any work
   SolveResult result;
   Stopwatch clock;
   BoundForm form;

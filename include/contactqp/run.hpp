@@ -74,7 +74,9 @@ Agreement agreement_for(double tol);  // {1e4 T, 1e5 T, 1e2 T}
 
 struct CompareOptions {
   BuildOptions build;
-  std::vector<Backend> backends;  // in this order; empty: available_backends()
+  // In this order; empty: available_backends(qp), those that solve the scene's kind of problem.
+  // A listed backend that does not solve it is an InputError before any solve.
+  std::vector<Backend> backends;
 };
 
 // One backend's run within a comparison.
@@ -83,7 +85,8 @@ struct BackendRun {
   SolveResult result;       // its K_factor released: a factor per backend is memory the next one may need
   Certificate certificate;  // computed with the comparison's own factor of K, the same for every run
   ContactSummary contact;
-  std::optional<double> rel_diff_u, rel_diff_lambda;  // ‖x − x_ref‖/‖x_ref‖ against the reference run
+  // ‖x − x_ref‖/‖x_ref‖ against the reference run; with friction λ stands for (λ_N, λ_T)
+  std::optional<double> rel_diff_u, rel_diff_lambda;
 };
 
 struct CompareReport {

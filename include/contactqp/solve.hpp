@@ -25,5 +25,12 @@ void validate_options(const SolveOptions& options);
 
 bool backend_available(Backend backend);  // false when its library was not built in
 std::vector<Backend> available_backends();
+// Whether a backend solves a kind of problem (friction.hpp): every backend solves frictionless
+// ones; a frictional problem on a backend that does not solve it is an InputError from solve().
+bool backend_supports(Backend backend, ProblemKind kind);   // in 2D at least
+std::vector<Backend> available_backends(ProblemKind kind);  // available and supporting `kind`
+// The same for one QP: its kind and, with friction, its dimension (nlopt takes 2D friction only).
+bool backend_solves(Backend backend, const QuadraticProgram& qp);
+std::vector<Backend> available_backends(const QuadraticProgram& qp);
 
 }  // namespace contactqp

@@ -19,6 +19,14 @@ constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
 
 bool converged(const BackendRun& run) { return run.result.status == Status::Converged; }
 
+// The multipliers a comparison measures: λ, and with friction (λ_N, λ_T) together.
+VectorXd multipliers(const BackendRun& run) {
+  if (run.result.lambda_t.size() == 0) return run.result.lambda;
+  VectorXd joined(run.result.lambda.size() + run.result.lambda_t.size());
+  joined << run.result.lambda, run.result.lambda_t;
+  return joined;
+}
+
 // The converged run with the smallest certified |relative gap|; the run with a certificate
 // otherwise. -1 when no run has a dual objective to compare.
 int choose_reference(const std::vector<BackendRun>& runs) {
@@ -40,17 +48,29 @@ Agreement agreement_for(double tol) { return {1e4 * tol, 1e5 * tol, 1e2 * tol}; 
 
 CompareReport compare_scene(const Scene& scene, const CompareOptions& options) {
   Stopwatch total;
-  const std::vector<Backend> backends = options.backends.empty() ? available_backends() : options.backends;
-  std::vector<SolveOptions> solve_options;
-  for (Backend backend : backends) {
-    solve_options.push_back(scene.solver);
-    solve_options.back().backend = backend;
-    validate_options(solve_options.back());
+  for (Backend backend : options.backends) {
+    SolveOptions checked = scene.solver;
+    checked.backend = backend;
+    validate_options(checked);
   }
 
   CompareReport report;
   auto model = std::make_shared<Model>(build_model(scene, options.build));
   auto qp = std::make_shared<QuadraticProgram>(assemble_qp(*model));
+  // Every backend that solves this kind of problem, or the ones listed, each of which must.
+  const std::vector<Backend> backends = options.backends.empty() ? available_backends(*qp) : options.backends;
+  std::vector<SolveOptions> solve_options;
+  for (Backend backend : backends) {
+    if (!backend_solves(backend, *qp)) {
+      std::string valid;
+      for (Backend other : available_backends(*qp)) valid += (valid.empty() ? "" : ", ") + to_string(other);
+      throw InputError("--backends", "= " + to_string(backend) + ": does not solve this scene's " +
+                                         (qp->friction.n_directions == 2 ? "3D " : "") + to_string(problem_kind(*qp)) +
+                                         " friction problem; backends that do: " + valid);
+    }
+    solve_options.push_back(scene.solver);
+    solve_options.back().backend = backend;
+  }
   report.model = model;
   report.qp = qp;
   report.tol = scene.solver.tol;
@@ -74,7 +94,7 @@ CompareReport compare_scene(const Scene& scene, const CompareOptions& options) {
     run.backend = run_options.backend;
     run.result = solve(*qp, run_options);
     run.result.K_factor.reset();  // a factor per backend is memory the next one may need
-    run.certificate = certify(*qp, run.result.u, run.result.lambda, &K_factor);
+    run.certificate = certify(*qp, run.result.u, run.result.lambda, run.result.lambda_t, &K_factor);
     run.contact = summarize_contact(*model, *qp, run.result.u, run.result.lambda);
     if (!model->bodies.empty() && model->scene.obstacles.empty()) {
       // Bodies without obstacles: the table's zone is the first pair's.
@@ -95,7 +115,7 @@ CompareReport compare_scene(const Scene& scene, const CompareOptions& options) {
   if (report.reference >= 0)
     for (BackendRun& run : runs) {
       run.rel_diff_u = relative_difference(run.result.u, runs[report.reference].result.u);
-      run.rel_diff_lambda = relative_difference(run.result.lambda, runs[report.reference].result.lambda);
+      run.rel_diff_lambda = relative_difference(multipliers(run), multipliers(runs[report.reference]));
     }
 
   // Agreement only when every run converged, every certified gap is small and every pair agrees.
@@ -107,7 +127,7 @@ CompareReport compare_scene(const Scene& scene, const CompareOptions& options) {
     for (size_t j = 0; j < i; ++j) {
       report.max_diff_u = std::max(report.max_diff_u, symmetric_difference(runs[i].result.u, runs[j].result.u));
       report.max_diff_lambda =
-          std::max(report.max_diff_lambda, symmetric_difference(runs[i].result.lambda, runs[j].result.lambda));
+          std::max(report.max_diff_lambda, symmetric_difference(multipliers(runs[i]), multipliers(runs[j])));
     }
   }
   report.agree = report.all_converged && report.max_diff_u <= report.bound.u &&
