@@ -48,6 +48,14 @@ struct MindlinComparison {
   double slip_displacement = 0;
 };
 
+// A symmetric model (body.symmetry) stands for symmetry_copies() mirror images of itself. The
+// sum over the images of a vector (a force) keeps its components along the cuts, times the
+// copies, and loses those across them (the 3D quarter: along z only; the half y ≥ 0: x and z);
+// their mean point (a centre) loses the components across the cuts. Unchanged without symmetry.
+Eigen::Vector3d whole_body_sum(const Model& model, const Eigen::Vector3d& vector);
+Eigen::Vector3d mirror_mean(const Model& model, const Eigen::Vector3d& point);
+double mirror_copies(const Model& model);
+
 // Mindlin's traction along Q at distance x from the centre (0 beyond b or a).
 double mindlin_traction(const MindlinComparison& mindlin, double x);
 

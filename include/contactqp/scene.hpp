@@ -72,6 +72,9 @@ struct BodySpec {
   // 2D: model only x ≥ 0, with u_x = 0 on x = 0 (boundary "symmetry"); 3D: only the quarter
   // x ≥ 0, y ≥ 0, with u_x = 0 on x = 0 (boundary "symmetry_x") and u_y = 0 on y = 0 ("symmetry_y").
   bool symmetry = false;
+  // 3D, with symmetry: which of the two planes cut the body. "symmetry": "y" keeps only y = 0
+  // (the half y ≥ 0: the plane that survives a load along x), "x" only x = 0; true both.
+  bool symmetry_x = true, symmetry_y = true;
   double thickness = 1.0;  // 2D: out-of-plane thickness (length); forces and K are per this thickness
   Formulation formulation = Formulation::Displacement;  // "displacement" or "mixed"
   MeshSpec mesh;                                        // generated shapes; for a .geo file only order and size_factor
@@ -294,10 +297,16 @@ UzawaOptions parse_rho(const std::string& text, const std::string& field);
 // and build_model() checks the names.
 std::vector<std::string> boundary_names(const BodySpec& body);
 
-// The boundaries a symmetric generated body is cut by, and the displacement component each
-// holds at zero: {"symmetry"} (x = 0, u_x) in 2D; {"symmetry_x", "symmetry_y"} (x = 0, u_x and
-// y = 0, u_y) in 3D.
-std::vector<std::string> symmetry_boundaries(int dim);
+// The boundaries a symmetric body is cut by, and the displacement component each holds at
+// zero: {"symmetry"} (x = 0, u_x) in 2D; {"symmetry_x", "symmetry_y"} (x = 0, u_x and y = 0, u_y)
+// in 3D, or the one body.symmetry names. Empty without symmetry.
+std::vector<std::string> symmetry_boundaries(const BodySpec& body, int dim);
+// Whether a symmetry plane cuts the body at x_component = 0 (0: x, 1: y; only x in 2D).
+bool symmetric_about(const BodySpec& body, int component, int dim);
+// How many mirror copies of the modelled part make the whole body: 2 per plane.
+int symmetry_copies(const BodySpec& body, int dim);
+// body.symmetry as a scene writes it: "true", "false", or the one plane, "x" or "y".
+std::string symmetry_name(const BodySpec& body);
 int symmetry_component(const std::string& boundary);  // 0 for "symmetry" and "symmetry_x", 1 for "symmetry_y"
 
 // The same scene seen after its transform: obstacles and load vectors rotated, the transform

@@ -89,8 +89,11 @@ std::string summary_table(const RunReport& report) {
   out += format("contactqp  %s\n", scene.source.c_str());
   const bool solid = model.dim == 3;
   out += format("  model        %s, %s%s, E = %g, nu = %g\n", to_string(scene.model).c_str(), body_text(model).c_str(),
-                scene.body.symmetry ? (solid ? " (quarter, symmetric)" : " (half, symmetric)") : "", scene.material.E,
-                scene.material.nu);
+                !scene.body.symmetry                          ? ""
+                : symmetry_copies(scene.body, model.dim) == 4 ? " (quarter, symmetric)"
+                : solid ? (" (half, symmetric about " + symmetry_name(scene.body) + " = 0)").c_str()
+                        : " (half, symmetric)",
+                scene.material.E, scene.material.nu);
   out += format("  mesh         %d nodes, %d %s (order %d), %d DOFs, %d contact candidates (gap <= %g)\n",
                 model.mesh.n_nodes(), model.mesh.n_elements(), solid ? "tetrahedra" : "triangles", model.mesh.order,
                 report.qp->n_dofs(), report.qp->n_constraints(), model.max_gap);

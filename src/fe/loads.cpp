@@ -131,9 +131,8 @@ Eigen::VectorXd nodal_forces(const Scene& scene, const Mesh& mesh, const std::ve
   // A point load on a symmetry plane: the modelled part carries its share of the force
   // (half on one plane, a quarter on the axis where two planes meet).
   std::vector<int> planes_of_node(mesh.n_nodes(), 0);
-  if (scene.body.symmetry)
-    for (const std::string& plane : symmetry_boundaries(dim))
-      for (int node : boundary_nodes(mesh, plane)) ++planes_of_node[node];
+  for (const std::string& plane : symmetry_boundaries(scene.body, dim))
+    for (int node : boundary_nodes(mesh, plane)) ++planes_of_node[node];
   for (size_t l = 0; l < scene.loads.size(); ++l) {
     const LoadSpec& load = scene.loads[l];
     if (const auto* traction = load.as<TractionLoad>()) {

@@ -120,6 +120,7 @@ json scene_json(const Model& model) {
   constexpr double kDegrees = 180 / 3.14159265358979323846;
   json out = {{"source", scene.source},          {"model", to_string(scene.model)}, {"E", number(scene.material.E)},
               {"nu", number(scene.material.nu)}, {"shape", scene.body.shape},       {"symmetry", scene.body.symmetry}};
+  if (symmetry_copies(scene.body, model.dim) == 2 && model.dim == 3) out["symmetry"] = symmetry_name(scene.body);
   if (model.dim == 2) {
     out["thickness"] = number(scene.body.thickness);
     out["rotate_degrees"] = number(std::atan2(model.rotation(1, 0), model.rotation(0, 0)) * kDegrees);

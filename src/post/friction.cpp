@@ -21,16 +21,6 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kMoved = 1e-5;
 constexpr double kOnBound = 1e-6;
 
-// How many copies of the modelled part make the whole body, and the vector sum of the copies
-// of a force: a 2D symmetry plane (x = 0) or the 3D quarter's two planes keep the component
-// along the axis the planes share and cancel the others.
-double copies(const Model& model) { return model.scene.body.symmetry ? (model.dim == 2 ? 2.0 : 4.0) : 1.0; }
-Eigen::Vector3d whole_body(const Model& model, const Eigen::Vector3d& force) {
-  if (!model.scene.body.symmetry) return force;
-  const Eigen::Vector3d axis = model.rotation.col(model.dim - 1);
-  return copies(model) * force.dot(axis) * axis;
-}
-
 // The friction, stick zone and Mindlin comparison of the rows `rows` (one obstacle's or pair's);
 // `profile` gives each row's coordinate, `centre` the 2D zone's centre.
 FrictionZone zone_of(const Model& model, const FrictionFields& fields, const std::vector<ContactProfilePoint>& profile,
@@ -54,9 +44,9 @@ FrictionZone zone_of(const Model& model, const FrictionFields& fields, const std
     const double mu = spec && spec->law == FrictionLaw::Coulomb ? spec->coefficient : NAN;
     coefficient = coefficient < 0 ? mu : (mu == coefficient ? mu : NAN);
   }
-  zone.resultant = whole_body(model, zone.resultant);
+  zone.resultant = whole_body_sum(model, zone.resultant);
   zone.tangential_force = zone.resultant.norm();
-  stick *= copies(model);
+  stick *= mirror_copies(model);
   zone.stick_size = dim == 2 ? stick / 2 : std::sqrt(stick / kPi);
   if (hertz && std::isfinite(coefficient) && coefficient > 0)
     zone.mindlin = compare_with_mindlin(model, fields, profile, centre, *hertz, coefficient, zone, body, other);

@@ -58,12 +58,8 @@ std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, 
     if (!d) continue;
     Reaction reaction{load.path, d->boundary, Eigen::Vector3d::Zero()};
     for (int node : boundary_nodes(mesh, d->boundary)) reaction.force.head(dim) += residual.segment(dim * node, dim);
-    // With symmetry the mirrored parts push the same along the axis the cuts share and
-    // cancel across it (2D: the scene's y, two halves; 3D: its z, four quarters).
-    if (model.scene.body.symmetry) {
-      const Eigen::Vector3d axis = model.rotation.col(dim == 2 ? 1 : 2);
-      reaction.force = (dim == 2 ? 2.0 : 4.0) * reaction.force.dot(axis) * axis;
-    }
+    // With symmetry the mirrored parts push the same along the cuts and cancel across them.
+    reaction.force = whole_body_sum(model, reaction.force);
     out.push_back(reaction);
   }
   return out;

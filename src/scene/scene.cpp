@@ -188,9 +188,25 @@ std::string to_string(ElasticModel model) {
 
 int dimension(ElasticModel model) { return model == ElasticModel::Solid ? 3 : 2; }
 
-std::vector<std::string> symmetry_boundaries(int dim) {
-  if (dim == 2) return {"symmetry"};
-  return {"symmetry_x", "symmetry_y"};
+bool symmetric_about(const BodySpec& body, int component, int dim) {
+  if (!body.symmetry || component > dim - 2) return false;
+  return dim == 2 || (component == 0 ? body.symmetry_x : body.symmetry_y);
+}
+
+std::vector<std::string> symmetry_boundaries(const BodySpec& body, int dim) {
+  if (dim == 2) return body.symmetry ? std::vector<std::string>{"symmetry"} : std::vector<std::string>{};
+  std::vector<std::string> planes;
+  if (symmetric_about(body, 0, dim)) planes.push_back("symmetry_x");
+  if (symmetric_about(body, 1, dim)) planes.push_back("symmetry_y");
+  return planes;
+}
+
+int symmetry_copies(const BodySpec& body, int dim) { return 1 << symmetry_boundaries(body, dim).size(); }
+
+std::string symmetry_name(const BodySpec& body) {
+  if (!body.symmetry) return "false";
+  if (body.symmetry_x && body.symmetry_y) return "true";
+  return body.symmetry_x ? "x" : "y";
 }
 
 int symmetry_component(const std::string& boundary) { return boundary == "symmetry_y" ? 1 : 0; }
@@ -206,11 +222,13 @@ std::vector<std::string> boundary_names(const BodySpec& body) {
   else if (body.shape == "hemisphere")
     names = {"surface", "top"};
   else if (body.shape == "box")
-    names = {"bottom", "top", body.symmetry ? "" : "left", "right", body.symmetry ? "" : "front", "back"};
+    names = {
+        "bottom", "top", symmetric_about(body, 0, 3) ? "" : "left", "right", symmetric_about(body, 1, 3) ? "" : "front",
+        "back"};
   names.erase(std::remove(names.begin(), names.end(), ""), names.end());
   if (body.symmetry && body.shape != "mesh") {
     const bool solid = body.shape == "hemisphere" || body.shape == "box";
-    for (const std::string& plane : symmetry_boundaries(solid ? 3 : 2)) names.push_back(plane);
+    for (const std::string& plane : symmetry_boundaries(body, solid ? 3 : 2)) names.push_back(plane);
   }
   return names;
 }

@@ -1,5 +1,5 @@
-// body.symmetry models only x ≥ 0 in 2D, the quarter x ≥ 0, y ≥ 0 in 3D, with the normal
-// displacement held on each cut. That is right only when the whole scene is mirror-symmetric
+// body.symmetry models only x ≥ 0 in 2D, the quarter x ≥ 0, y ≥ 0 in 3D (or the half beside the
+// one plane "symmetry": "x" or "y" names), with the normal displacement held on each cut. That is right only when the whole scene is mirror-symmetric
 // about x = 0 (and y = 0) in its own frame (the transform turns the symmetric scene as a
 // whole, so the check ignores it).
 #include <cmath>
@@ -55,6 +55,7 @@ void check_symmetry(const Scene& scene) {
   if (!scene.body.symmetry) return;
   const int dim = scene.dim();
   for (int c = 0; c < dim - 1; ++c) {  // x = 0, and y = 0 in 3D
+    if (!symmetric_about(scene.body, c, dim)) continue;
     const std::string axis = c == 0 ? "x" : "y";
     const std::string plane = axis + " = 0";
     for (const ObstacleSpec& o : scene.obstacles)
@@ -70,7 +71,8 @@ void check_symmetry(const Scene& scene) {
       const auto* p = load.as<PointLoad>();
       if (p && p->at && (*p->at)[c] < 0)
         broken(load.path + " acts at " + axis + " = " + format_value((*p->at)[c]) + " < 0, outside the modelled " +
-                   (dim == 2 ? "half" : "quarter") + " (give " + axis + " ≥ 0: the mirror image is implied)",
+                   (symmetry_copies(scene.body, dim) == 2 ? "half" : "quarter") + " (give " + axis +
+                   " ≥ 0: the mirror image is implied)",
                plane);
       if (p && p->at && (*p->at)[c] == 0 && p->force[c] != 0)
         broken(load.path + " acts on " + axis + " = 0 with an " + axis + " component " + format_value(p->force[c]),
