@@ -115,7 +115,8 @@ void read_symmetry(JsonObject& body, BodySpec& spec, int dim) {
   }
   const std::string path = body.path_of("symmetry");
   if (!value.is_string())
-    throw InputError(path, "= " + describe(value) + ": must be true, false" + (dim == 3 ? ", \"x\" or \"y\"" : ""));
+    throw InputError(path, "= " + describe(value) +
+                               (dim == 3 ? ": must be true, false, \"x\" or \"y\"" : ": must be true or false"));
   const std::string plane = value.get<std::string>();
   if (dim == 2)
     throw InputError(path, "= \"" + plane + "\": must be true or false (a 2D body has one symmetry plane, x = 0)");

@@ -10,9 +10,10 @@
 namespace contactqp::detail {
 namespace {
 
-[[noreturn]] void broken(const std::string& what, const std::string& plane) {
-  throw InputError("body.symmetry",
-                   "= true: " + what + ", which is not mirror-symmetric about " + plane + "; set \"symmetry\": false");
+[[noreturn]] void broken(const BodySpec& body, const std::string& what, const std::string& plane) {
+  const std::string name = symmetry_name(body), value = name == "true" ? name : "\"" + name + "\"";
+  throw InputError("body.symmetry", "= " + value + ": " + what + ", which is not mirror-symmetric about " + plane +
+                                        "; set \"symmetry\": false");
 }
 
 // A point on the mirror plane x_c = 0; a direction within it.
@@ -59,23 +60,25 @@ void check_symmetry(const Scene& scene) {
     const std::string axis = c == 0 ? "x" : "y";
     const std::string plane = axis + " = 0";
     for (const ObstacleSpec& o : scene.obstacles)
-      if (!mirror_symmetric(o, c)) broken(o.path + " (" + o.type() + mirror_rule(o, axis), plane);
+      if (!mirror_symmetric(o, c)) broken(scene.body, o.path + " (" + o.type() + mirror_rule(o, axis), plane);
     for (const LoadSpec& load : scene.loads) {
       if (const auto* d = load.as<DisplacementLoad>(); d && d->value[c] && *d->value[c] != 0.0)
-        broken(load.path + " has u" + axis + " = " + format_value(*d->value[c]), plane);
+        broken(scene.body, load.path + " has u" + axis + " = " + format_value(*d->value[c]), plane);
       const Eigen::Vector3d* along = nullptr;  // a traction and g must be parallel to the plane
       if (const auto* t = load.as<TractionLoad>()) along = &t->traction;
       if (const auto* g = load.as<GravityLoad>()) along = &g->g;
       if (along && (*along)[c] != 0.0)
-        broken(load.path + " has an " + axis + " component " + format_value((*along)[c]), plane);
+        broken(scene.body, load.path + " has an " + axis + " component " + format_value((*along)[c]), plane);
       const auto* p = load.as<PointLoad>();
       if (p && p->at && (*p->at)[c] < 0)
-        broken(load.path + " acts at " + axis + " = " + format_value((*p->at)[c]) + " < 0, outside the modelled " +
+        broken(scene.body,
+               load.path + " acts at " + axis + " = " + format_value((*p->at)[c]) + " < 0, outside the modelled " +
                    (symmetry_copies(scene.body, dim) == 2 ? "half" : "quarter") + " (give " + axis +
                    " ≥ 0: the mirror image is implied)",
                plane);
       if (p && p->at && (*p->at)[c] == 0 && p->force[c] != 0)
-        broken(load.path + " acts on " + axis + " = 0 with an " + axis + " component " + format_value(p->force[c]),
+        broken(scene.body,
+               load.path + " acts on " + axis + " = 0 with an " + axis + " component " + format_value(p->force[c]),
                plane);
     }
   }

@@ -1,5 +1,6 @@
 // Bad friction and load-step input in scenes (docs/friction.md): each names its field, and the CLI exits 2
 // with one line and writes nothing.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -29,6 +30,7 @@ std::string with_loads(const std::string& rest) {
 std::vector<BadScene> bad_scenes() {
   auto patch = [](const char* p) { return patched_scene("scenes/hertz.json", p); };
   auto pair = [](const char* p) { return patched_scene("scenes/two-cylinders.json", p); };
+  auto sphere = [](const char* p) { return patched_scene("scenes/hertz-sphere.json", p); };
   return {
       {patch(R"({"contact": {"friction": {"coefficient": -0.1}}})"),
        "contact.friction.coefficient = -0.1: must be ≥ 0"},
@@ -71,6 +73,15 @@ std::vector<BadScene> bad_scenes() {
                  "contact": {"friction": {"coefficient": 0.3}},
                  "steps": [{"factors": {"push": 1}}, {"factors": {"shear": 1}}]})"),
        "body.symmetry = true: load[1] has ux = 0.001, which is not mirror-symmetric about x = 0"},
+      // 3D keeps the one plane that contains the load: "symmetry": "y" (the half y ≥ 0).
+      {sphere(R"({"body": {"symmetry": "y"},
+                  "load": {"type": "displacement", "boundary": "top", "value": [null, 0.001, -0.01]}})"),
+       "body.symmetry = \"y\": load has uy = 0.001, which is not mirror-symmetric about y = 0"},
+      {sphere(R"({"load": {"type": "displacement", "boundary": "top", "value": [0.001, null, -0.01]}})"),
+       "body.symmetry = true: load has ux = 0.001, which is not mirror-symmetric about x = 0"},
+      {sphere(R"({"body": {"symmetry": "z"}})"), "body.symmetry = \"z\": unknown symmetry plane; valid: x, y"},
+      {sphere(R"({"body": {"symmetry": 1}})"), "body.symmetry = 1: must be true, false, \"x\" or \"y\""},
+      {patch(R"({"body": {"symmetry": "x"}})"), "body.symmetry = \"x\": must be true or false"},
   };
 }
 
@@ -107,4 +118,17 @@ TEST_CASE("load steps whose loads prescribe one DOF differently name the step", 
       {"name": "b", "type": "displacement", "boundary": "top", "value": [null, -0.016]}],
       "steps": [{"factors": {"a": 1, "b": 1}}, {"factors": {"b": 0.5}}]})"));
   CHECK_THROWS_WITH(contactqp::run_scene(scene, RunOptions{}), Catch::Matchers::Contains("steps[1] prescribes node"));
+}
+
+TEST_CASE("\"symmetry\": \"y\" keeps the plane y = 0 only: a load along x is accepted", "[input][friction]") {
+  const Scene scene = parse_scene(patched_scene("scenes/hertz-sphere.json", R"({"body": {"symmetry": "y"},
+      "load": {"type": "displacement", "boundary": "top", "value": [0.001, null, -0.01]}})"));
+  CHECK(symmetry_boundaries(scene.body, 3) == std::vector<std::string>{"symmetry_y"});
+  CHECK(symmetry_copies(scene.body, 3) == 2);
+  CHECK(symmetry_name(scene.body) == "y");
+  const std::vector<std::string> names = boundary_names(scene.body);
+  CHECK(std::count(names.begin(), names.end(), "symmetry_x") == 0);
+  CHECK(std::count(names.begin(), names.end(), "symmetry_y") == 1);
+  const Scene quarter = parse_scene(read_text(source_path("scenes/hertz-sphere.json")));
+  CHECK(symmetry_copies(quarter.body, 3) == 4);
 }
