@@ -56,8 +56,8 @@ Agreement agreement_for(double tol);  // {1e4 T, 1e5 T, 1e2 T}
 
 struct CompareOptions {
   BuildOptions build;
-  // In this order; empty: available_backends(qp), those that solve the scene's kind of problem.
-  // A listed backend that does not solve it is an InputError before any solve.
+  // In this order; empty: available_backends(qp), those that solve the scene's problem (its kind
+  // and, with friction, its dimension). A listed backend that does not is an InputError before any solve.
   std::vector<Backend> backends;
 };
 

@@ -57,7 +57,8 @@ CompareReport compare_scene(const Scene& scene, const CompareOptions& options) {
   CompareReport report;
   auto model = std::make_shared<Model>(build_model(scene, options.build));
   auto qp = std::make_shared<QuadraticProgram>(assemble_qp(*model));
-  // Every backend that solves this kind of problem, or the ones listed, each of which must.
+  // Every available backend that solves this problem (its kind and, with friction, its dimension;
+  // backend.hpp), or the ones listed, each of which must: checked before any solve.
   const std::vector<Backend> backends = options.backends.empty() ? available_backends(*qp) : options.backends;
   std::vector<SolveOptions> solve_options;
   for (Backend backend : backends) {
