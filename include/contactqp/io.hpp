@@ -1,6 +1,7 @@
 // Output files: the result JSON, the pressure profile CSV, written atomically.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -21,6 +22,21 @@ void check_output_path(const std::string& path, const std::string& field);
 // (and removes the temporary file).
 void write_file_atomically(const std::string& path, const std::string& content);
 
+// One load step of a run with steps (scene.steps, docs/friction.md): what it solved and the
+// contact it gave, post-processed as the run's last state is.
+struct StepReport {
+  std::string path;                                     // "steps[1]"
+  std::vector<std::pair<std::string, double>> factors;  // every named load's factor at the step's end
+  Status status = Status::NumericalError;
+  std::string message;
+  int iterations = 0;
+  double seconds = 0;  // the step's solve
+  std::map<std::string, double> diagnostics;
+  ContactSummary contact;
+  std::vector<PairContact> pairs;
+  std::vector<Reaction> reactions;
+};
+
 // Everything one solve produced, for the result file and the summary. run_scene() (run.hpp)
 // makes one. The report owns what it holds, the model and the QP included (shared, read-only),
 // so that it outlives the scene it came from, e.g. as a Python object.
@@ -35,6 +51,8 @@ struct RunReport {
   std::optional<PunchComparison> boussinesq;  // 3D scenes pressed by a flat punch
   std::vector<Reaction> reactions;            // one per displacement load
   std::vector<PairContact> pairs;             // one per contact pair of a scene with bodies
+  std::optional<FrictionFields> friction;     // each row's friction, with friction (the last step's)
+  std::vector<StepReport> steps;              // each load step in order; empty without steps
   Timings timings;                            // every phase: mesh, assemble, factorize, solve, ..., total
   bool no_contact = false;                    // a linear solve with the contact rows dropped (--no-contact)
   std::vector<std::string> warnings;          // also printed on stderr

@@ -44,6 +44,24 @@ RunReport run_scene(const Scene& scene, const RunOptions& options = {});
 // The same for a scene file (InputError("path", ...) when it cannot be read).
 RunReport run_scene(const std::string& scene_path, const RunOptions& options = {});
 
+// The contact a solution gives: the summary over the obstacles, each pair's, the supports'
+// reactions and, with friction, each row's friction (FrictionZone in the summaries too).
+struct PostProcessed {
+  ContactSummary contact;
+  std::vector<PairContact> pairs;
+  std::vector<Reaction> reactions;
+  std::optional<FrictionFields> friction;
+};
+PostProcessed postprocess(const Model& model, const QuadraticProgram& qp, const SolveResult& result);
+
+// Solves a scene's load steps (scene.steps, docs/friction.md) in order on its model and QP: each
+// step sets its loads (apply_load_step) and the friction offset (the last step's tangential
+// positions), reuses the last step's factor of K and starts from its solution, and is
+// post-processed into `steps` (when given). Stops after a step that did not converge. Returns
+// the last step's result; the model and the QP are left at the last step solved.
+SolveResult solve_load_steps(Model& model, QuadraticProgram& qp, const Scene& scene, const SolveOptions& options,
+                             std::vector<StepReport>* steps = nullptr);
+
 // How closely converged backends must agree at tolerance T for a comparison to pass. Each
 // backend stops when its relative KKT residuals are below T; the error of a solution is that
 // residual amplified by the conditioning of the contact problem, more so for λ (a force read

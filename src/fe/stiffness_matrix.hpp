@@ -15,4 +15,9 @@ namespace contactqp::detail {
 void assemble_stiffness(const Model& model, const RankShare& share, const std::vector<int>& distributed_row,
                         Eigen::SparseMatrix<double>& K, Eigen::VectorXd& f);
 
+// −K_free,prescribed · u_prescribed over the free DOFs, for the model's prescribed values: the
+// prescribed displacements' share of f on its own, for a load step (apply_load_step). Only the
+// elements with a non-zero prescribed DOF are visited.
+Eigen::VectorXd prescribed_forces(const Model& model);
+
 }  // namespace contactqp::detail

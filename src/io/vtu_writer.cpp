@@ -147,6 +147,25 @@ ContactFields contact_fields(const RunReport& report, const Eigen::VectorXd& dis
   return fields;
 }
 
+// With friction, at each node of a row's node side: the friction traction and this step's slip
+// (vectors, the sums over the node's rows) and the state (the largest over its rows: 0 gap,
+// 1 stick, 2 slip).
+struct FrictionNodeFields {
+  Eigen::VectorXd traction, slip, state;
+};
+
+FrictionNodeFields friction_node_fields(const Model& model, const FrictionFields& fields) {
+  const int n = model.mesh.n_nodes(), dim = model.dim;
+  FrictionNodeFields out{Eigen::VectorXd::Zero(dim * n), Eigen::VectorXd::Zero(dim * n), Eigen::VectorXd::Zero(n)};
+  for (size_t i = 0; i < model.candidates.size(); ++i) {
+    const int node = model.candidates[i].node;
+    out.traction.segment(dim * node, dim) += fields.traction[i].head(dim);
+    out.slip.segment(dim * node, dim) += fields.slip[i].head(dim);
+    out.state[node] = std::max(out.state[node], static_cast<double>(fields.state[i]));
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string vtu_document(const RunReport& report) {
@@ -190,6 +209,12 @@ std::string vtu_document(const RunReport& report) {
   vectors(out, "contact_force", contact.force, dim);
   scalars(out, "gap", contact.gap);
   scalars(out, "contact_boundary", contact.mask);
+  if (report.friction) {
+    const FrictionNodeFields friction = friction_node_fields(model, *report.friction);
+    vectors(out, "tangential_traction", friction.traction, dim);
+    vectors(out, "slip", friction.slip, dim);
+    scalars(out, "contact_state", friction.state);
+  }
   // With several bodies, which body each node belongs to (0, 1, ... in the scene's order).
   if (!model.bodies.empty()) {
     Eigen::VectorXd body = Eigen::VectorXd::Zero(mesh.n_nodes());

@@ -150,6 +150,7 @@ ContactSummary summarize_contact(const Model& model, const QuadraticProgram& qp,
     ContactProfilePoint point;
     point.node = candidate.node;
     point.obstacle = candidate.obstacle;
+    point.row = i;
     if (!solid) point.s = detail::surface_coordinate(obstacle, x, origins[candidate.obstacle]);
     point.force = lambda[i];
     summary.obstacles[candidate.obstacle].profile.push_back(point);

@@ -181,6 +181,7 @@ std::vector<PairContact> summarize_pairs(const Model& model, const QuadraticProg
       const Candidate& c = model.candidates[i];
       ContactProfilePoint point;
       point.node = c.node;
+      point.row = i;
       point.force = lambda[i];
       point.pressure = pressure[i];
       point.s = coordinate(model.mesh.nodes[c.node], dim, tangent, centre, normal);

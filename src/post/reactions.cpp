@@ -7,7 +7,7 @@
 namespace contactqp {
 
 std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
-                                const Eigen::VectorXd& lambda) {
+                                const Eigen::VectorXd& lambda, const Eigen::VectorXd& lambda_t) {
   const Mesh& mesh = model.mesh;
   // Only the nodes of prescribed boundaries need their residual, so only the elements at them
   // are visited, in element order: each node's sum is the one a loop over all elements makes.
@@ -51,6 +51,7 @@ std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, 
     const Eigen::Vector3d n = detail::project(model.scene.obstacles[c.obstacle], mesh.nodes[c.node]).normal;
     residual.segment(dim * c.node, dim) -= lambda[i] * n.head(dim);
   }
+  if (lambda_t.size() > 0) residual -= friction_nodal_forces(model, qp, lambda_t);
   std::vector<Reaction> out;
   for (const LoadSpec& load : model.scene.loads) {
     const DisplacementLoad* d = load.as<DisplacementLoad>();

@@ -37,7 +37,12 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   report.options.observer = nullptr;  // a callback is not data: the report must not keep the caller's closure alive
   report.no_contact = options.no_contact;
   phase("solve");
-  report.result = options.no_contact ? solve_without_contact(*qp, scene.solver) : solve(*qp, scene.solver);
+  if (options.no_contact)
+    report.result = solve_without_contact(*qp, scene.solver);
+  else if (scene.steps.empty())
+    report.result = solve(*qp, scene.solver);
+  else
+    report.result = solve_load_steps(*model, *qp, scene, report.options, &report.steps);
 
   phase("certify");
   Stopwatch clock;
@@ -47,14 +52,16 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   report.timings.add("certify", clock.seconds());
   phase("postprocess");
   clock.restart();
-  report.contact = summarize_contact(*model, *qp, report.result.u, report.result.lambda);
+  PostProcessed state = postprocess(*model, *qp, report.result);
+  report.contact = std::move(state.contact);
   // With several bodies the obstacles' Hertz would need each body's material: the pairs have theirs.
   if (!report.no_contact && model->bodies.empty()) {
     report.hertz = compare_with_hertz(*model, report.contact);
     report.boussinesq = compare_with_boussinesq(*model, report.contact);
   }
-  report.reactions = reactions(*model, *qp, report.result.u, report.result.lambda);
-  report.pairs = summarize_pairs(*model, *qp, report.result.u, report.result.lambda);
+  report.reactions = std::move(state.reactions);
+  report.pairs = std::move(state.pairs);
+  report.friction = std::move(state.friction);
   // The largest contact pressure anywhere, as the VTU's contact_pressure field holds it: the
   // pairs' nodal pressures on both sides too.
   for (const PairContact& pair : report.pairs)

@@ -115,6 +115,7 @@ void read_contact_entry(JsonObject entry, Scene& scene) {
                                                   scene.bodies[pair.body[0]].name +
                                                   "\"; a pair couples two different bodies");
     pair.max_gap = read_max_gap(entry);
+    if (entry.has("friction")) pair.friction = read_friction(entry.object("friction"));
     entry.finish();
     scene.pairs.push_back(pair);
     return;
@@ -125,6 +126,7 @@ void read_contact_entry(JsonObject entry, Scene& scene) {
   spec.body = body;
   spec.boundary = boundary;
   spec.max_gap = read_max_gap(entry);
+  if (entry.has("friction")) spec.friction = read_friction(entry.object("friction"));
   entry.finish({"pair"});
   scene.obstacle_contacts.push_back(spec);
 }

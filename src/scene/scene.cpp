@@ -115,6 +115,7 @@ ContactSpec read_contact(JsonObject contact, const BodySpec& body) {
   }
   spec.max_gap = contact.optional_number("max_gap");
   if (spec.max_gap) require(*spec.max_gap >= 0, contact.path_of("max_gap"), *spec.max_gap, "must be ≥ 0");
+  if (contact.has("friction")) spec.friction = detail::read_friction(contact.object("friction"));
   contact.finish();
   return spec;
 }
@@ -278,6 +279,8 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
 
   if (root.has("bodies")) {  // several bodies (bodies_reader.cpp)
     detail::read_bodies(root, scene, source);
+    if (root.has("steps")) detail::read_steps(root.value("steps"), scene);
+    detail::check_friction(scene);
     root.finish();
     return scene;
   }
@@ -300,6 +303,8 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   if (scene.contact.boundary.empty()) scene.contact.boundary = default_contact_boundary(scene.body, dim);
   if (root.has("transform")) scene.transform = detail::read_transform(root.object("transform"), dim);
   if (root.has("solver")) read_solver(root.object("solver"), scene.solver);
+  if (root.has("steps")) detail::read_steps(root.value("steps"), scene);
+  detail::check_friction(scene);
   root.finish();
   detail::check_symmetry(scene);
   return scene;
