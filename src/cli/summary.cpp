@@ -108,8 +108,9 @@ std::string summary_table(const RunReport& report) {
                   report.options.tol);
   out += format("  status       %s after %d iterations: %s\n", to_string(result.status).c_str(), result.iterations,
                 result.message.c_str());
-  out += format("  certificate  KKT stationarity %.2e, primal %.2e, dual %.2e, complementarity %.2e\n", c.stationarity,
-                c.primal_feasibility, c.dual_feasibility, c.complementarity);
+  out += format("  certificate  KKT stationarity %.2e, primal %.2e, dual %.2e, complementarity %.2e%s\n",
+                c.stationarity, c.primal_feasibility, c.dual_feasibility, c.complementarity,
+                report.qp->friction.empty() ? "" : format(", tangential %.2e", c.tangential).c_str());
   if (c.dual_available)
     out += format("               J = %.10g, theta = %.10g, gap = %.2e (relative %.2e)\n", c.objective,
                   c.dual_objective, c.duality_gap, c.relative_gap);

@@ -225,6 +225,7 @@ std::string result_json(const RunReport& report) {
                 {"dual_feasibility", number(c.dual_feasibility)},
                 {"complementarity", number(c.complementarity)},
                 {"max", number(c.kkt_max())}};
+  if (!qp.friction.empty()) out["kkt"]["tangential"] = number(c.tangential);
 
   const ContactSummary& contact = report.contact;
   const int dim = model.dim;

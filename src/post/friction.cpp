@@ -12,9 +12,13 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A row's multiplier within this fraction of its bound is on the bound: the row slips. Backends
-// project λ_T onto its set, so a slipping row sits on the rim to round-off, while Mindlin's
-// traction approaches the rim only like sqrt(c − r) from inside the stick zone.
+// A loaded row slips when it moved in this step — its slip above this fraction of the largest
+// row's (a stuck row's slip is the solver's tolerance: 3e-8 of it on
+// scenes/mindlin-cylinders.json at tol 1e-8, the first slipping row's 1e-3) — or when its
+// multiplier is on its bound. The slip decides: Coulomb's fixed point leaves λ_T a relative 1e-6
+// inside the bound μλ_N of the last λ_N, more at the zone's edge where λ_N is small, while
+// Mindlin's traction nears the bound only like sqrt(c − r) from inside the stick zone.
+constexpr double kMoved = 1e-5;
 constexpr double kOnBound = 1e-6;
 
 // How many copies of the modelled part make the whole body, and the vector sum of the copies
@@ -73,6 +77,9 @@ FrictionFields friction_fields(const Model& model, const QuadraticProgram& qp, c
   fields.bound.assign(m, 0.0);
   const Eigen::VectorXd slip = block.T * u - block.offset;
   const double loaded = 1e-8 * (lambda.size() ? lambda.maxCoeff() : 0.0);
+  double largest_slip = 0;
+  for (int i = 0; i < m; ++i)
+    if (lambda[i] > loaded) largest_slip = std::max(largest_slip, slip.segment(i * nd, nd).norm());
   for (int i = 0; i < m; ++i) {
     const Candidate& c = model.candidates[i];
     const std::vector<Eigen::Vector3d> t = detail::row_tangents(model, detail::row_normal(model, c));
@@ -82,9 +89,10 @@ FrictionFields friction_fields(const Model& model, const QuadraticProgram& qp, c
     }
     fields.bound[i] = block.law == FrictionLaw::Tresca ? block.threshold[i] : block.coefficient[i] * lambda[i];
     if (!(lambda[i] > loaded)) continue;  // gap
+    const bool moved = slip.segment(i * nd, nd).norm() > kMoved * largest_slip;
     const bool on_bound =
         !(fields.bound[i] > 0) || lambda_t.segment(i * nd, nd).norm() >= (1 - kOnBound) * fields.bound[i];
-    fields.state[i] = on_bound ? 2 : 1;
+    fields.state[i] = moved || on_bound ? 2 : 1;
   }
   for (int component = 0; component < dim; ++component) {
     Eigen::VectorXd along(m);

@@ -40,8 +40,9 @@ SolveResult solve_load_steps(Model& model, QuadraticProgram& qp, const Scene& sc
     timings.merge(result.timings);
     iterations += result.iterations;
     if (friction) positions = detail::tangential_positions(model, result.u);
-    // K is the same in every step: the next step reuses this one's factor.
+    // K is the same in every step: the next step reuses this one's factor and starts from its answer.
     step_options.K_factor = result.K_factor;
+    step_options.initial = {result.u, result.lambda, result.lambda_t};
     if (steps) {
       StepReport step;
       step.path = path;

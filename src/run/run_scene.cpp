@@ -46,7 +46,10 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
 
   phase("certify");
   Stopwatch clock;
-  report.certificate = certify(*qp, report.result.u, report.result.lambda, report.result.K_factor.get());
+  report.certificate =
+      qp->friction.empty()
+          ? certify(*qp, report.result.u, report.result.lambda, report.result.K_factor.get())
+          : certify(*qp, report.result.u, report.result.lambda, report.result.lambda_t, report.result.K_factor.get());
   report.timings.merge(model->timings);
   report.timings.merge(report.result.timings);
   report.timings.add("certify", clock.seconds());

@@ -1,4 +1,4 @@
-// Bad friction and load-step input in scenes (docs/friction.md): each names its field, and the CLI
+// Bad friction and load-step input in scenes (docs/friction.md): each names its field, and the CLI exits 2
 // with one line and writes nothing.
 #include <catch2/catch.hpp>
 #include <filesystem>
