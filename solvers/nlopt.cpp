@@ -355,6 +355,10 @@ SolveResult solve_nlopt_once(const QuadraticProgram& qp, const VectorXd& radii, 
         },
         &dual);
     std::vector<double> x = dual.reduced(dual.origin.lambda);
+    // NLopt refuses a start outside its bounds (NLOPT_INVALID_ARGS): a disc's radial projection
+    // may land an ulp outside the interval.
+    if (set.frictional())
+      for (int k = 0; k < n_free; ++k) x[k] = std::clamp(x[k], lower[k], upper[k]);
     dual.optimizer = &optimizer;
     last = run(optimizer, x);
     ++runs;

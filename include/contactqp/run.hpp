@@ -109,7 +109,9 @@ struct CompareReport {
 
 // Solves the scene's QP with each backend from scratch (its own factorisation included, so
 // that times compare), certifies every run with one shared factor, and measures how far the
-// answers lie from each other. Every backend's options are validated before any work.
+// answers lie from each other. A scene with load steps: each backend runs the whole path
+// (solve_load_steps) and the last steps are compared. Every backend's options are validated
+// before any work.
 CompareReport compare_scene(const Scene& scene, const CompareOptions& options = {});
 CompareReport compare_scene(const std::string& scene_path, const CompareOptions& options = {});
 
