@@ -37,6 +37,13 @@ endif()
 if(CONTACTQP_WITH_PETSC)
   string(APPEND CONTACTQP_PC_REQUIRES " PETSc ompi-cxx")
 endif()
+# Every library's list of built-in registrations (cmake/builtins.cmake) is kept in the link the
+# way the CMake package keeps it: -Wl,--undefined=<its symbol> before the archives.
+get_property(anchors GLOBAL PROPERTY CONTACTQP_BUILTIN_ANCHORS)
+set(CONTACTQP_PC_KEEP "")
+foreach(anchor IN LISTS anchors)
+  string(APPEND CONTACTQP_PC_KEEP " -Wl,--undefined=${anchor}")
+endforeach()
 # Relocatable: the prefix is found from the .pc file's own place, so `--prefix P` at install
 # time works (libdir is lib, or lib/<multiarch> under /usr).
 string(REGEX REPLACE "[^/]+" ".." CONTACTQP_PC_TO_PREFIX "${CMAKE_INSTALL_LIBDIR}/pkgconfig")

@@ -5,8 +5,23 @@
 #include <cstdint>
 #include <string>
 
+#include "contactqp/backend.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/scene.hpp"
+
+// No backend is linked into the parser alone: register the built-ins' names (unavailable), so
+// that scenes naming them reach the solver keys after solver.backend.
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  for (const contactqp::Backend backend :
+       {contactqp::Backend::Uzawa, contactqp::Backend::UzawaAccelerated, contactqp::Backend::Ipopt,
+        contactqp::Backend::Nlopt, contactqp::Backend::ActiveSet, contactqp::Backend::Petsc}) {
+    contactqp::BackendRegistration name_only;
+    name_only.name = contactqp::to_string(backend);
+    name_only.available = false;
+    contactqp::register_backend(name_only);
+  }
+  return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

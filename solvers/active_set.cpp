@@ -64,12 +64,10 @@ double lower_bound_residual(const QuadraticProgram& qp, const VectorXd& lambda, 
                            std::max(inf_norm(qp.f), inf_norm(qp.B.transpose() * lambda)));
 }
 
-}  // namespace
-
 void check_active_set_options(const SolveOptions& options) { effective_options(options); }
 
 // The frictionless problem (or one whose friction exerts no force): condense B, solve the LCP.
-static SolveResult solve_condensed_lcp(const QuadraticProgram& qp, const SolveOptions& options,
+SolveResult solve_condensed_lcp(const QuadraticProgram& qp, const SolveOptions& options,
                                        const ActiveSetOptions& settings) {
   const VectorXd warm = initial_multipliers(qp, options, MultiplierSet(qp, VectorXd()));
   SolveResult result;
@@ -202,4 +200,17 @@ SolveResult solve_active_set(const QuadraticProgram& qp, const SolveOptions& opt
   return result;
 }
 
+}  // namespace
 }  // namespace contactqp::detail
+
+CONTACTQP_BUILTIN(active_set) {
+  BackendRegistration active_set;
+  active_set.name = "active_set";
+  active_set.summary = "primal-dual active set (semismooth Newton) on the contact-condensed problem";
+  active_set.order = 50;
+  active_set.option_names = {"max_dense_mb"};
+  active_set.check_options = check_active_set_options;
+  active_set.solve = solve_active_set;
+  active_set.problem_kinds = {ProblemKind::Frictionless, ProblemKind::Tresca, ProblemKind::Coulomb};
+  register_backend(active_set);
+}

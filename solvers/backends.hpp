@@ -1,28 +1,17 @@
-// Entry points of the backends, one per file in solvers/, dispatched by registry.cpp.
-// Each receives a validated (and, unless disabled, scaled) QP and returns a SolveResult
-// whose u and λ are finite; the registry checks that once more.
+// What the backends share besides the QP (each backend registers itself in its own file,
+// contactqp/backend.hpp): the solver of K they work with, and how its statistics reach the result.
+// A backend receives a validated (and, unless disabled, scaled) QP and returns a SolveResult
+// whose u and λ are finite; solve() checks that once more.
 #pragma once
 
 #include <memory>
 
+#include "contactqp/backend.hpp"
 #include "contactqp/linear_solver.hpp"
 #include "contactqp/qp.hpp"
+#include "qp/builtins.hpp"
 
 namespace contactqp::detail {
-
-SolveResult solve_uzawa(const QuadraticProgram& qp, const SolveOptions& options);
-SolveResult solve_uzawa_accelerated(const QuadraticProgram& qp, const SolveOptions& options);
-SolveResult solve_ipopt(const QuadraticProgram& qp, const SolveOptions& options);
-SolveResult solve_nlopt(const QuadraticProgram& qp, const SolveOptions& options);
-
-// Throw InputError when SolveOptions::backend_options hold a key or value the backend
-// does not accept; called before any work.
-void check_ipopt_options(const SolveOptions& options);
-void check_nlopt_options(const SolveOptions& options);
-void check_active_set_options(const SolveOptions& options);
-SolveResult solve_active_set(const QuadraticProgram& qp, const SolveOptions& options);
-void check_petsc_options(const SolveOptions& options);
-SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options);
 
 // The solver of qp.K a backend works with: options.K_factor when the caller supplied one,
 // otherwise a fresh one of the kind options.linear_solver names (inner tolerance from

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <set>
 #include <vector>
 
 #include "lcp.hpp"
@@ -57,7 +56,12 @@ class Ssn {
   bool newton_point(const Linearisation& lin, VectorXd& y_next) const;
   // Records a feasible point; true when it meets the tolerance.
   bool accept(const VectorXd& y, const VectorXd& w);
-  void gradient_steps(int count);
+  // q(y) = ½yᵀSy − hᵀy from y and its w = Sy − h.
+  double objective(const VectorXd& y, const VectorXd& w) const { return 0.5 * y.dot(w - p_.h); }
+  void gradient_steps(int count, VectorXd& y, VectorXd& w);
+  // A Newton point's step from the feasible y, projected and halved until q decreases (or, at
+  // full length, the residual does): true, with y and w moved, when one is found.
+  bool newton_search(const VectorXd& y_newton, VectorXd& y, VectorXd& w);
 
   const FrictionSsnProblem& p_;
   const FrictionSsnOptions& options_;
@@ -168,11 +172,10 @@ bool Ssn::accept(const VectorXd& y, const VectorXd& w) {
   return residual <= options_.tol;
 }
 
-// Projected gradient steps from the best point: direction d = proj(y − αw) − y, the exact
-// minimiser of the quadratic q along it (within the segment, which the convex set contains),
-// then the Barzilai–Borwein length α = dᵀd / dᵀSd for the next step.
-void Ssn::gradient_steps(int count) {
-  VectorXd y = best_y_, w = best_w_;
+// Projected gradient steps from y: direction d = proj(y − αw) − y, the exact minimiser of the
+// quadratic q along it (within the segment, which the convex set contains), then the
+// Barzilai–Borwein length α = dᵀd / dᵀSd for the next step. Monotone in q.
+void Ssn::gradient_steps(int count, VectorXd& y, VectorXd& w) {
   double alpha = 1.0 / d_.maxCoeff();
   for (int k = 0; k < count && result_.iterations < options_.max_iterations; ++k) {
     const VectorXd d = project(y - alpha * w) - y;
@@ -189,6 +192,23 @@ void Ssn::gradient_steps(int count) {
   }
 }
 
+bool Ssn::newton_search(const VectorXd& y_newton, VectorXd& y, VectorXd& w) {
+  const double q = objective(y, w);
+  const double residual = options_.residual(y, w);
+  const VectorXd step = y_newton - y;
+  for (double t = 1; t >= 1.0 / 1024; t *= 0.5) {
+    const VectorXd trial = project(y + t * step);
+    const VectorXd trial_w = gradient(trial);
+    // Near the answer q's decrease is round-off: a full step that lowers the residual counts too.
+    if (objective(trial, trial_w) < q || (t == 1 && options_.residual(trial, trial_w) < residual)) {
+      y = trial;
+      w = trial_w;
+      return true;
+    }
+  }
+  return false;
+}
+
 FrictionSsnResult Ssn::run() {
   result_.residual = std::numeric_limits<double>::infinity();
   VectorXd y = options_.start.size() == M_ ? project(options_.start) : VectorXd(VectorXd::Zero(M_));
@@ -196,50 +216,37 @@ FrictionSsnResult Ssn::run() {
   if (accept(y, w)) {
     result_.outcome = SsnOutcome::Converged;
   } else {
-    // Newton from y (its iterates may leave the set; their projections are measured), with
-    // gradient steps from the best point when Newton cycles or stops improving.
-    std::set<std::vector<signed char>> seen;
-    int without_progress = 0;
-    constexpr int kPatience = 5;        // Newton steps without a new best residual
+    // Newton from the feasible y, its step projected and damped until q decreases (so that the
+    // states cannot cycle); when Newton finds no descent, projected gradient steps from y, then
+    // Newton again. Both keep y feasible.
     constexpr int kGradientSteps = 50;  // gradient steps before Newton resumes
-    constexpr int kMaxRounds = 20;      // gradient rounds before giving up on Newton
-    int rounds = 0;
+    constexpr int kMaxStalls = 3;       // gradient rounds in a row that neither lower q nor the residual
+    int stalls = 0;
     while (result_.iterations < options_.max_iterations) {
       const Linearisation lin = linearise(y, w);
-      const bool repeated = p_.n_directions == 1 && !seen.insert(lin.state).second;
       VectorXd y_next;
-      if (repeated || without_progress >= kPatience || !newton_point(lin, y_next)) {
-        if (rounds++ >= kMaxRounds) {
-          result_.outcome = SsnOutcome::Stalled;
-          break;
-        }
-        const double before = result_.residual;
-        gradient_steps(kGradientSteps);
-        if (result_.residual <= options_.tol) {
+      if (newton_point(lin, y_next) && newton_search(y_next, y, w)) {
+        ++result_.iterations;
+        ++result_.newton_steps;
+        if (accept(y, w)) {
           result_.outcome = SsnOutcome::Converged;
           break;
         }
-        if (!(result_.residual < before) && rounds > 1) {
-          result_.outcome = SsnOutcome::Stalled;
-          break;
-        }
-        y = best_y_;
-        w = best_w_;
-        seen.clear();
-        without_progress = 0;
+        stalls = 0;
         continue;
       }
-      ++result_.iterations;
-      ++result_.newton_steps;
-      const double before = result_.residual;
-      const VectorXd feasible = project(y_next);
-      if (accept(feasible, gradient(feasible))) {
+      const double q_before = objective(y, w), best_before = result_.residual;
+      gradient_steps(kGradientSteps, y, w);
+      if (result_.residual <= options_.tol) {
         result_.outcome = SsnOutcome::Converged;
         break;
       }
-      without_progress = result_.residual < before ? 0 : without_progress + 1;
-      y = y_next;
-      w = gradient(y);
+      if (objective(y, w) < q_before || result_.residual < best_before)
+        stalls = 0;
+      else if (++stalls >= kMaxStalls) {
+        result_.outcome = SsnOutcome::Stalled;
+        break;
+      }
     }
   }
   result_.y = best_y_;

@@ -8,6 +8,9 @@
 //
 // Ipopt factorises the whole KKT matrix with MUMPS at every iteration and never needs K's
 // Cholesky factor, so SolveResult::K_factor stays null (certify() factorises K itself).
+#include "backends.hpp"
+
+#ifdef CONTACTQP_HAVE_IPOPT  // set by CMake when Ipopt was found (CONTACTQP_WITH_IPOPT)
 #include <IpDenseVector.hpp>
 #include <IpIpoptApplication.hpp>
 #include <IpIpoptData.hpp>
@@ -21,12 +24,10 @@
 #include <mutex>
 
 #include "backend_options.hpp"
-#include "backends.hpp"
 #include "contactqp/errors.hpp"
 #include "coulomb_fixed_point.hpp"
 #include "ipopt_friction.hpp"
 #include "multiplier_set.hpp"
-#include "problem_kinds.hpp"
 #include "qp/friction_sets.hpp"
 
 namespace contactqp::detail {
@@ -321,14 +322,10 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> configured_application(const QuadraticP
   return app;
 }
 
-}  // namespace
-
 void check_ipopt_options(const SolveOptions& options) {
   std::lock_guard<std::mutex> lock(ipopt_mutex());
   configured_application(QuadraticProgram{}, options);
 }
-
-namespace {
 
 // One Ipopt solve: the primal QP without friction force, else the frictional dual with the
 // discs' radii `radii`.
@@ -391,10 +388,7 @@ SolveResult solve_ipopt_once(const QuadraticProgram& qp, const VectorXd& radii, 
   return result;
 }
 
-}  // namespace
-
 SolveResult solve_ipopt(const QuadraticProgram& qp, const SolveOptions& options) {
-  require_supported(Backend::Ipopt, qp);  // friction: InputError before any work
   // An interior point gains little from a starting point near the answer: the warm start is
   // only checked, not used.
   initial_multipliers(qp, options, MultiplierSet(qp, qp.friction.threshold));
@@ -405,4 +399,23 @@ SolveResult solve_ipopt(const QuadraticProgram& qp, const SolveOptions& options)
   return solve_ipopt_once(qp, qp.friction.threshold, options);
 }
 
+}  // namespace
 }  // namespace contactqp::detail
+#endif  // CONTACTQP_HAVE_IPOPT
+
+CONTACTQP_BUILTIN(ipopt) {
+  BackendRegistration ipopt;
+  ipopt.name = "ipopt";
+  ipopt.summary = "primal interior point (Ipopt with MUMPS) on the QP itself";
+  ipopt.order = 30;
+  ipopt.option_names = {"print_level", "max_iter", "tol", "mu_strategy", "mu_init"};
+  ipopt.library_options = true;  // any of Ipopt's own options, checked against Ipopt's list
+#ifdef CONTACTQP_HAVE_IPOPT
+  ipopt.check_options = check_ipopt_options;
+  ipopt.solve = solve_ipopt;
+  ipopt.problem_kinds = {ProblemKind::Frictionless, ProblemKind::Tresca, ProblemKind::Coulomb};
+#else
+  ipopt.available = false;
+#endif
+  register_backend(ipopt);
+}

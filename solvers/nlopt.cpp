@@ -14,11 +14,14 @@
 // 2D friction: the same dual with y = (λ_N, λ_T) on the rows [B; T] (multiplier_set.hpp); Tresca's
 // λ_T,i ∈ [−r_i, r_i] is a bound, so the problem keeps its form, and the rule adds the tangential
 // natural-map residual. Coulomb: the fixed point of coulomb_fixed_point.hpp around it. 3D friction
-// is refused (problem_kinds.cpp): its discs are not bounds. Tried and dropped, at tol 1e-10 on
+// is refused (its registration's max_friction_directions = 1): its discs are not bounds. Tried and dropped, at tol 1e-10 on
 // 8 to 40 nodes: the discs as NLopt inequality constraints (LD_CCSAQ, LD_MMA, LD_SLSQP, AUGLAG
 // around L-BFGS) stalled between 1e-9 and 1e-5; L-BFGS on the square through Fong's elliptical
 // grid map, or on polar coordinates (ρ ∈ [−r, r]) after a run on the square around each disc,
 // stalled between 1e-9 and 1e-8 on 40 nodes.
+#include "backends.hpp"
+
+#ifdef CONTACTQP_HAVE_NLOPT  // set by CMake when NLopt was found (CONTACTQP_WITH_NLOPT)
 #include <nlopt.hpp>
 
 #include <algorithm>
@@ -27,12 +30,10 @@
 #include <vector>
 
 #include "backend_options.hpp"
-#include "backends.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
 #include "coulomb_fixed_point.hpp"
 #include "multiplier_set.hpp"
-#include "problem_kinds.hpp"
 #include "qp/friction_sets.hpp"
 #include "qp/norms.hpp"
 
@@ -297,11 +298,7 @@ Next next_after(nlopt::result code) {
 constexpr double kRestartProgress = 0.5;
 constexpr int kMaxRunsWithoutProgress = 3;
 
-}  // namespace
-
 void check_nlopt_options(const SolveOptions& options) { effective_options(options); }
-
-namespace {
 
 SolveResult solve_nlopt_once(const QuadraticProgram& qp, const VectorXd& radii, const SolveOptions& options,
                              const NloptOptions& settings) {
@@ -358,6 +355,10 @@ SolveResult solve_nlopt_once(const QuadraticProgram& qp, const VectorXd& radii, 
         },
         &dual);
     std::vector<double> x = dual.reduced(dual.origin.lambda);
+    // NLopt refuses a start outside its bounds (NLOPT_INVALID_ARGS): a disc's radial projection
+    // may land an ulp outside the interval.
+    if (set.frictional())
+      for (int k = 0; k < n_free; ++k) x[k] = std::clamp(x[k], lower[k], upper[k]);
     dual.optimizer = &optimizer;
     last = run(optimizer, x);
     ++runs;
@@ -400,10 +401,7 @@ SolveResult solve_nlopt_once(const QuadraticProgram& qp, const VectorXd& radii, 
   return result;
 }
 
-}  // namespace
-
 SolveResult solve_nlopt(const QuadraticProgram& qp, const SolveOptions& options) {
-  require_supported(Backend::Nlopt, qp);  // friction: InputError before any work
   const NloptOptions settings = effective_options(options);
   if (qp.friction.law == FrictionLaw::Coulomb && !without_friction_force(qp.friction))
     return solve_coulomb_by_fixed_point(qp, options, [&](const VectorXd& radii, const SolveOptions& step_options) {
@@ -412,4 +410,23 @@ SolveResult solve_nlopt(const QuadraticProgram& qp, const SolveOptions& options)
   return solve_nlopt_once(qp, qp.friction.threshold, options, settings);
 }
 
+}  // namespace
 }  // namespace contactqp::detail
+#endif  // CONTACTQP_HAVE_NLOPT
+
+CONTACTQP_BUILTIN(nlopt) {
+  BackendRegistration nlopt;
+  nlopt.name = "nlopt";
+  nlopt.summary = "the dual by a bound-constrained NLopt method (L-BFGS by default)";
+  nlopt.order = 40;
+  nlopt.option_names = {"algorithm", "memory"};
+#ifdef CONTACTQP_HAVE_NLOPT
+  nlopt.check_options = check_nlopt_options;
+  nlopt.solve = solve_nlopt;
+  nlopt.problem_kinds = {ProblemKind::Frictionless, ProblemKind::Tresca, ProblemKind::Coulomb};
+  nlopt.max_friction_directions = 1;  // 2D: the interval is a bound, the disc is not
+#else
+  nlopt.available = false;
+#endif
+  register_backend(nlopt);
+}

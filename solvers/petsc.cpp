@@ -14,7 +14,6 @@
 #include "bound_form.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
-#include "problem_kinds.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -54,12 +53,9 @@ double relative_residual(const QuadraticProgram& qp, const VectorXd& u, const Ve
   return std::max({ratio(violation, L), ratio(negative, F), ratio(complementarity, F * L)});
 }
 
-}  // namespace
-
 void check_petsc_options(const SolveOptions& options) { backend_settings(options); }
 
 SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options) {
-  require_supported(Backend::Petsc, qp);  // friction: InputError before any work
   SolveResult result;
   Stopwatch clock;
   BoundForm form;
@@ -134,4 +130,17 @@ SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options)
   return result;
 }
 
+}  // namespace
 }  // namespace contactqp::detail
+
+CONTACTQP_BUILTIN(petsc) {
+  BackendRegistration petsc;
+  petsc.name = "petsc";
+  petsc.summary = "the bound form solved by PETSc (active set with KSP solves, or TAO), under mpirun too";
+  petsc.order = 60;
+  petsc.option_names = {"method", "inexact", "reuse_preconditioner"};
+  petsc.available = linear_solver_available(LinearSolverKind::Petsc);
+  petsc.check_options = check_petsc_options;
+  petsc.solve = solve_petsc;
+  register_backend(petsc);
+}

@@ -34,10 +34,20 @@ UzawaRun plain_loop(const UzawaContext& context, const UzawaStep& step, int firs
   return run;
 }
 
-}  // namespace
-
 SolveResult solve_uzawa(const QuadraticProgram& qp, const SolveOptions& options) {
   return solve_uzawa_variant(qp, options, UzawaVariant::Plain, plain_loop);
 }
 
+}  // namespace
 }  // namespace contactqp::detail
+
+CONTACTQP_BUILTIN(uzawa) {
+  BackendRegistration uzawa;
+  uzawa.name = "uzawa";
+  uzawa.summary = "dual projected gradient with a fixed step rho (the reference paper's method)";
+  uzawa.order = 10;
+  uzawa.check_options = check_uzawa_options;
+  uzawa.solve = solve_uzawa;
+  uzawa.problem_kinds = {ProblemKind::Frictionless, ProblemKind::Tresca, ProblemKind::Coulomb};
+  register_backend(uzawa);
+}

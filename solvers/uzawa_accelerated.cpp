@@ -71,10 +71,20 @@ UzawaRun accelerated_loop(const UzawaContext& context, const UzawaStep& step, in
   return run;
 }
 
-}  // namespace
-
 SolveResult solve_uzawa_accelerated(const QuadraticProgram& qp, const SolveOptions& options) {
   return solve_uzawa_variant(qp, options, UzawaVariant::Accelerated, accelerated_loop);
 }
 
+}  // namespace
 }  // namespace contactqp::detail
+
+CONTACTQP_BUILTIN(uzawa_accel) {
+  BackendRegistration accelerated;
+  accelerated.name = "uzawa_accel";
+  accelerated.summary = "Uzawa with Nesterov extrapolation on the dual and adaptive restart";
+  accelerated.order = 20;
+  accelerated.check_options = check_uzawa_options;
+  accelerated.solve = solve_uzawa_accelerated;
+  accelerated.problem_kinds = {ProblemKind::Frictionless, ProblemKind::Tresca, ProblemKind::Coulomb};
+  register_backend(accelerated);
+}

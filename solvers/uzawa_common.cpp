@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "backend_options.hpp"
 #include "contactqp/certificate.hpp"
 #include "coulomb_fixed_point.hpp"
 #include "qp/norms.hpp"
@@ -316,6 +317,11 @@ SolveResult solve_uzawa_variant(const QuadraticProgram& qp, const SolveOptions& 
     if (rho == 0 && frictional && result.status == Status::Converged) rho = result.diagnostics["rho"];
     return result;
   });
+}
+
+void check_uzawa_options(const SolveOptions& options) {
+  reject_options(options.backend, options.backend_options,
+                 "its step is --rho or solver.rho (address other backends' options as ipopt.key=value)");
 }
 
 }  // namespace contactqp::detail

@@ -136,4 +136,7 @@ SolveResult run_uzawa(const QuadraticProgram& qp, const VectorXd& radii, const S
 SolveResult solve_uzawa_variant(const QuadraticProgram& qp, const SolveOptions& options, UzawaVariant variant,
                                 UzawaLoop loop);
 
+// Both variants take no backend options (their step is --rho): InputError on a key addressed to them.
+void check_uzawa_options(const SolveOptions& options);
+
 }  // namespace contactqp::detail

@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "contactqp/friction.hpp"
@@ -62,23 +63,55 @@ struct QuadraticProgram {
 // K, or a threshold or coefficient is negative (friction.hpp). Cheap: O(nnz).
 void validate(const QuadraticProgram& qp);
 
-// Frictionless, Tresca or Coulomb: the law of qp.friction.
-ProblemKind problem_kind(const QuadraticProgram& qp);
-
 // K u, summed over the ranks when K is a rank share (then collective).
 VectorXd K_times(const QuadraticProgram& qp, const VectorXd& u);
 
 // J(u) = ½ uᵀKu − fᵀu (collective when K is a rank share).
 double primal_objective(const QuadraticProgram& qp, const VectorXd& u);
 
-enum class Backend {
-  Uzawa,             // dual projected gradient with a fixed step ρ (the reference paper's method)
-  UzawaAccelerated,  // Uzawa with Nesterov/FISTA extrapolation on the dual and adaptive restart
-  Ipopt,             // primal interior point (Ipopt with MUMPS) on the QP itself
-  Nlopt,             // the dual max θ(λ), λ ≥ 0, by a bound-constrained NLopt method (L-BFGS by default)
-  ActiveSet,         // primal-dual active set (semismooth Newton) on the contact-condensed problem
-  Petsc,             // the bound form (rows as bounds on per-node variables) solved by PETSc, under mpirun too
+// What kind of problem the QP is, from its friction block: a backend solves only the kinds
+// its registration lists (backend.hpp).
+ProblemKind problem_kind(const QuadraticProgram& qp);
+
+// An optimisation backend: a small value naming one registration (backend.hpp), compared by
+// name, usable as a key of std::map and std::set, printed by to_string. The built-in backends
+// register themselves in their own files under solvers/ (and src/petsc/); their names stand
+// here so that code can write Backend::ActiveSet. Any other backend (one a program or a test
+// registers) comes from register_backend() or parse_backend().
+class Backend {
+ public:
+  // The value an enum had by default: the reference paper's method.
+  constexpr Backend() : name_("uzawa") {}
+
+  static const Backend Uzawa;             // dual projected gradient with a fixed step ρ (the reference paper's method)
+  static const Backend UzawaAccelerated;  // Uzawa with Nesterov/FISTA extrapolation on the dual and adaptive restart
+  static const Backend Ipopt;             // primal interior point (Ipopt with MUMPS) on the QP itself
+  static const Backend Nlopt;             // the dual max θ(λ), λ ≥ 0, by a bound-constrained NLopt method
+  static const Backend ActiveSet;         // primal-dual active set (semismooth Newton) on the condensed problem
+  static const Backend Petsc;             // the bound form solved by PETSc, under mpirun too
+
+  // The name the CLI, the scenes, the JSON and Python use ("active_set").
+  constexpr std::string_view name() const { return name_; }
+
+  friend constexpr bool operator==(Backend a, Backend b) { return a.name_ == b.name_; }
+  friend constexpr bool operator!=(Backend a, Backend b) { return a.name_ != b.name_; }
+  friend constexpr bool operator<(Backend a, Backend b) { return a.name_ < b.name_; }
+
+ private:
+  friend class BackendRegistry;
+  // `name` must outlive every copy: a string literal, or a name the registry keeps.
+  constexpr explicit Backend(std::string_view name) : name_(name) {}
+  std::string_view name_;
 };
+
+// Constants, initialised at compile time: a SolveOptions made during static initialisation
+// (whose default is Backend::Uzawa) needs no registry.
+inline constexpr Backend Backend::Uzawa{"uzawa"};
+inline constexpr Backend Backend::UzawaAccelerated{"uzawa_accel"};
+inline constexpr Backend Backend::Ipopt{"ipopt"};
+inline constexpr Backend Backend::Nlopt{"nlopt"};
+inline constexpr Backend Backend::ActiveSet{"active_set"};
+inline constexpr Backend Backend::Petsc{"petsc"};
 
 enum class Status {
   Converged,       // the stopping rule of the backend was met at the requested tol
@@ -87,11 +120,13 @@ enum class Status {
   NumericalError,  // a factorisation or the backend's library failed; see the message
 };
 
-std::string to_string(Backend backend);
+std::string to_string(Backend backend);  // its name: "uzawa_accel"
 std::string to_string(Status status);
-// "uzawa" -> Backend::Uzawa. Unknown names throw InputError(field, "... valid: uzawa, ...").
+// "uzawa" -> Backend::Uzawa, for every registered backend (backend.hpp). Unknown names throw
+// InputError(field, "= \"ipot\": unknown backend; valid: uzawa, ...; did you mean \"ipopt\"?").
 Backend parse_backend(const std::string& name, const std::string& field = "backend");
-std::vector<Backend> all_backends();  // every enum value, in declaration order
+// Every registered backend, built in or not (backend_available() tells), in listing order.
+std::vector<Backend> all_backends();
 
 struct UzawaOptions {
   // How the step ρ is chosen. Auto estimates the spectrum of S = B K⁻¹ Bᵀ by Lanczos (one

@@ -74,8 +74,8 @@ Agreement agreement_for(double tol);  // {1e4 T, 1e5 T, 1e2 T}
 
 struct CompareOptions {
   BuildOptions build;
-  // In this order; empty: available_backends(qp), those that solve the scene's kind of problem.
-  // A listed backend that does not solve it is an InputError before any solve.
+  // In this order; empty: available_backends(qp), those that solve the scene's problem (its kind
+  // and, with friction, its dimension). A listed backend that does not is an InputError before any solve.
   std::vector<Backend> backends;
 };
 
@@ -109,7 +109,9 @@ struct CompareReport {
 
 // Solves the scene's QP with each backend from scratch (its own factorisation included, so
 // that times compare), certifies every run with one shared factor, and measures how far the
-// answers lie from each other. Every backend's options are validated before any work.
+// answers lie from each other. A scene with load steps: each backend runs the whole path
+// (solve_load_steps) and the last steps are compared. Every backend's options are validated
+// before any work.
 CompareReport compare_scene(const Scene& scene, const CompareOptions& options = {});
 CompareReport compare_scene(const std::string& scene_path, const CompareOptions& options = {});
 

@@ -24,7 +24,7 @@ SparseMatrix to_sparse(py::handle value, const std::string& field);
 // Eigen column-major sparse matrix to scipy.sparse.csc_matrix (a copy).
 py::object to_scipy(const SparseMatrix& matrix);
 
-// A Backend enum value or its name ("uzawa", "uzawa_accel", "ipopt", "nlopt", "active_set").
+// A contactqp.Backend or the name of a registered backend ("uzawa", "active_set", ...).
 Backend to_backend(py::handle value, const std::string& field);
 
 // The Uzawa step: None or "auto", a positive number (absolute ρ), or a fraction of ρ_max

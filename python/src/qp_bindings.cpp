@@ -1,10 +1,15 @@
 // contactqp.QuadraticProgram, solve(), certify(), and the Backend and Status enums: any
 // user's assembled contact QP, solved by every backend and judged by one certificate.
 #include <pybind11/eigen.h>
+#include <pybind11/operators.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <functional>
 #include <memory>
+#include <string_view>
 
 #include "bindings.hpp"
 #include "contactqp/certificate.hpp"
@@ -113,8 +118,8 @@ const char* const kSolveDoc = R"(Solve the QP  min 1/2 u^T K u - f^T u  s.t.  B 
 
 Arguments (None keeps the library's default, shown in brackets):
   qp              a contactqp.QuadraticProgram
-  backend         a contactqp.Backend or its name: "uzawa", "uzawa_accel", "ipopt", "nlopt",
-                  "active_set" [uzawa]
+  backend         a contactqp.Backend or its name ("uzawa", "active_set", ...: every name in
+                  contactqp.Backend.__members__, in lower case) [uzawa]
   tol             relative tolerance in (0, 1) of the backend's stopping rule, measured with
                   the certificate's scales [1e-8]
   rho             Uzawa's step: "auto", a positive number, or a fraction of rho_max like "0.5x" [auto]
@@ -137,19 +142,40 @@ Example:
   >>> s.status, s.u, s.lam          # u = (0.5, 0.75), lam = (0.75,)
 )";
 
+// The class constant of a backend: its name in upper case (UZAWA_ACCEL).
+std::string constant_name(Backend backend) {
+  std::string name = to_string(backend);
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::toupper(c); });
+  return name;
+}
+
 }  // namespace
 
 void bind_qp(py::module_& m) {
-  py::enum_<Backend>(m, "Backend", "The optimisation backends (contactqp.available_backends() lists those built in).")
-      .value("UZAWA", Backend::Uzawa, "dual projected gradient with a fixed step rho (the reference paper's method)")
-      .value("UZAWA_ACCEL", Backend::UzawaAccelerated, "Uzawa with Nesterov extrapolation and adaptive restart")
-      .value("IPOPT", Backend::Ipopt, "primal interior point (Ipopt with MUMPS) on the QP itself")
-      .value("NLOPT", Backend::Nlopt, "the dual by a bound-constrained NLopt method (L-BFGS by default)")
-      .value("ACTIVE_SET", Backend::ActiveSet, "primal-dual active set on the contact-condensed problem")
-      .value("PETSC", Backend::Petsc, "the bound form solved by PETSc (active set with KSP solves, or TAO)")
+  // contactqp.Backend: a class constant per registered backend (Backend.ACTIVE_SET), listed in
+  // __members__ in listing order as the enum it once was; Backend("active_set") by name.
+  py::class_<Backend> backend_class(m, "Backend",
+                                    "An optimisation backend (contactqp.available_backends() lists those built in).");
+  backend_class
+      .def(py::init([](const std::string& name) { return parse_backend(name, "backend"); }), py::arg("name"),
+           "The backend of this name, e.g. Backend('active_set'); InputError for an unknown one.")
       .def_property_readonly(
           "label", [](Backend b) { return to_string(b); },
-          "The name the command line and scene files use, e.g. 'active_set'.");
+          "The name the command line and scene files use, e.g. 'active_set'.")
+      .def_property_readonly("name", &constant_name, "The constant's name, e.g. 'ACTIVE_SET'.")
+      .def_property_readonly(
+          "summary", [](Backend b) { return backend_registration(b)->summary; }, "What the method is, in one line.")
+      .def(py::self == py::self)
+      .def(py::self != py::self)
+      .def("__hash__", [](Backend b) { return std::hash<std::string_view>()(b.name()); })
+      .def("__repr__", [](Backend b) { return "<Backend." + constant_name(b) + ": '" + to_string(b) + "'>"; })
+      .def("__str__", [](Backend b) { return "Backend." + constant_name(b); });
+  py::dict members;
+  for (Backend backend : all_backends()) {
+    backend_class.attr(constant_name(backend).c_str()) = backend;
+    members[constant_name(backend).c_str()] = backend;
+  }
+  backend_class.attr("__members__") = members;
   py::enum_<Status>(m, "Status", "How a solve ended; accuracy is the certificate's business.")
       .value("CONVERGED", Status::Converged, "the backend's stopping rule was met at the requested tol")
       .value("MAX_ITERATIONS", Status::MaxIterations, "stopped at max_iterations; u and lam are the last iterate")
@@ -158,7 +184,9 @@ void bind_qp(py::module_& m) {
       .def_property_readonly(
           "label", [](Status s) { return to_string(s); }, "The name the result JSON uses, e.g. 'converged'.");
 
-  m.def("available_backends", &available_backends, "The backends built into this copy, in enum order.");
+  m.def(
+      "available_backends", []() { return available_backends(); },
+      "The backends built into this copy, in listing order (Backend.__members__'s).");
   m.def(
       "backend_available", [](py::handle backend) { return backend_available(to_backend(backend, "backend")); },
       py::arg("backend"), "True when the backend's library was built in (a Backend or its name).");

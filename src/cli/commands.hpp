@@ -53,6 +53,11 @@ void add_backend_options(const std::vector<std::string>& pairs, SolveOptions& op
 void check_distinct_outputs(const std::string& scene_path,
                             const std::vector<std::pair<std::string, std::string>>& outputs);
 
+// backend_help.cpp: the available backends' names ("uzawa, uzawa_accel, ..."), and every
+// registered backend with its summary and options, one per line, for the help's footer.
+std::string backend_names();
+std::string backends_help();
+
 // The human summary printed on stdout after a solve.
 std::string summary_table(const RunReport& report);
 

@@ -130,7 +130,7 @@ void add_compare_command(CLI::App& app, int& exit_status) {
       "T = --tol); 1 otherwise; 2 on bad input");
   command->add_option("scene", solve.scene_path, "Scene file (JSON)")->required();
   command->add_option("--backends", arguments->backends,
-                      "Comma-separated backends, e.g. uzawa,ipopt,nlopt (default: every available one)");
+                      "Comma-separated backends among " + backend_names() + " (default: every available one)");
   CLI::Option* tol = command->add_option("--tol", solve.tol,
                                          "Relative tolerance T of every backend (default: the scene's solver.tol)");
   command->add_option("--rho", solve.rho, "Uzawa step: auto, a number, or a fraction of rho_max like 0.5x");
@@ -141,6 +141,7 @@ void add_compare_command(CLI::App& app, int& exit_status) {
   add_linear_solver_options(*command, solve);
   command->add_option("--backend-option", solve.backend_options,
                       "key=value for every backend, or ipopt.key=value / nlopt.key=value for one (repeatable)");
+  command->footer(backends_help());
   command->callback([arguments, tol, max_iterations, &exit_status] {
     arguments->solve.tol_given = tol->count() > 0;
     arguments->solve.max_iterations_given = max_iterations->count() > 0;

@@ -144,7 +144,8 @@ void add_solve_command(CLI::App& app, int& exit_status) {
   CLI::App* command =
       app.add_subcommand("solve", "Solve one scene and report contact pressure, certificate and Hertz errors");
   command->add_option("scene", arguments->scene_path, "Scene file (JSON)")->required();
-  command->add_option("--backend", arguments->backend, "Optimisation backend (overrides solver.backend)");
+  command->add_option("--backend", arguments->backend,
+                      "Optimisation backend: " + backend_names() + " (overrides solver.backend)");
   CLI::Option* tol =
       command->add_option("--tol", arguments->tol, "Relative tolerance of the stopping rule (default 1e-8)");
   command->add_option("--rho", arguments->rho, "Uzawa step: auto, a number, or a fraction of rho_max like 0.5x");
@@ -165,6 +166,7 @@ void add_solve_command(CLI::App& app, int& exit_status) {
   add_linear_solver_options(*command, *arguments);
   command->add_flag("--no-contact", arguments->no_contact,
                     "Drop the contact rows: one linear solve of the same K (the reference for timings)");
+  command->footer(backends_help());
   command->callback([arguments, tol, max_iterations, &exit_status] {
     arguments->tol_given = tol->count() > 0;
     arguments->max_iterations_given = max_iterations->count() > 0;

@@ -8,18 +8,6 @@
 
 namespace contactqp {
 
-ProblemKind problem_kind(const QuadraticProgram& qp) {
-  switch (qp.friction.law) {
-    case FrictionLaw::None:
-      return ProblemKind::Frictionless;
-    case FrictionLaw::Tresca:
-      return ProblemKind::Tresca;
-    case FrictionLaw::Coulomb:
-      return ProblemKind::Coulomb;
-  }
-  return ProblemKind::Frictionless;
-}
-
 namespace detail {
 namespace {
 

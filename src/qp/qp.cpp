@@ -1,19 +1,12 @@
 #include "contactqp/qp.hpp"
 
 #include <cmath>
-#include <utility>
 
 #include "contactqp/errors.hpp"
 #include "qp/friction_sets.hpp"
 
 namespace contactqp {
 namespace {
-
-// The one name table of the backends: the CLI, the scenes and the JSON use these names.
-const std::pair<Backend, const char*> kBackendNames[] = {
-    {Backend::Uzawa, "uzawa"}, {Backend::UzawaAccelerated, "uzawa_accel"}, {Backend::Ipopt, "ipopt"},
-    {Backend::Nlopt, "nlopt"}, {Backend::ActiveSet, "active_set"},         {Backend::Petsc, "petsc"},
-};
 
 bool all_finite(const SparseMatrix& A) {
   for (int k = 0; k < A.outerSize(); ++k)
@@ -25,27 +18,6 @@ bool all_finite(const SparseMatrix& A) {
 std::string shape(const SparseMatrix& A) { return std::to_string(A.rows()) + " × " + std::to_string(A.cols()); }
 
 }  // namespace
-
-std::string to_string(Backend backend) {
-  for (const auto& [value, name] : kBackendNames)
-    if (value == backend) return name;
-  return "unknown";
-}
-
-std::vector<Backend> all_backends() {
-  std::vector<Backend> list;
-  for (const auto& entry : kBackendNames) list.push_back(entry.first);
-  return list;
-}
-
-Backend parse_backend(const std::string& name, const std::string& field) {
-  std::string valid;
-  for (const auto& [value, known] : kBackendNames) {
-    if (name == known) return value;
-    valid += (valid.empty() ? "" : ", ") + std::string(known);
-  }
-  throw InputError(field, "= \"" + name + "\": unknown backend; valid: " + valid);
-}
 
 std::string to_string(FrictionLaw law) {
   switch (law) {
@@ -69,6 +41,18 @@ std::string to_string(ProblemKind kind) {
       return "coulomb";
   }
   return "unknown";
+}
+
+ProblemKind problem_kind(const QuadraticProgram& qp) {
+  switch (qp.friction.law) {
+    case FrictionLaw::None:
+      return ProblemKind::Frictionless;
+    case FrictionLaw::Tresca:
+      return ProblemKind::Tresca;
+    case FrictionLaw::Coulomb:
+      return ProblemKind::Coulomb;
+  }
+  return ProblemKind::Frictionless;
 }
 
 std::string to_string(Status status) {

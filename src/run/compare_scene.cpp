@@ -57,7 +57,8 @@ CompareReport compare_scene(const Scene& scene, const CompareOptions& options) {
   CompareReport report;
   auto model = std::make_shared<Model>(build_model(scene, options.build));
   auto qp = std::make_shared<QuadraticProgram>(assemble_qp(*model));
-  // Every backend that solves this kind of problem, or the ones listed, each of which must.
+  // Every available backend that solves this problem (its kind and, with friction, its dimension;
+  // backend.hpp), or the ones listed, each of which must: checked before any solve.
   const std::vector<Backend> backends = options.backends.empty() ? available_backends(*qp) : options.backends;
   std::vector<SolveOptions> solve_options;
   for (Backend backend : backends) {
@@ -71,8 +72,6 @@ CompareReport compare_scene(const Scene& scene, const CompareOptions& options) {
     solve_options.push_back(scene.solver);
     solve_options.back().backend = backend;
   }
-  report.model = model;
-  report.qp = qp;
   report.tol = scene.solver.tol;
   report.warnings = model->warnings;
 
@@ -88,17 +87,32 @@ CompareReport compare_scene(const Scene& scene, const CompareOptions& options) {
     report.linear_solve_seconds = std::min(report.linear_solve_seconds, clock.seconds());
   }
 
-  // Each backend from scratch (its own factorisation included), so that the times compare.
+  // Each backend from scratch (its own factorisation included), so that the times compare. A
+  // scene with load steps runs its whole path per backend (with friction the answer depends on
+  // it), on its own copy of the model and the QP; the last step's answers are compared, each
+  // certified on the QP of its own last step (the offset is that backend's last-but-one step).
+  std::shared_ptr<const Model> last_model = model;
+  std::shared_ptr<const QuadraticProgram> last_qp = qp;
   for (const SolveOptions& run_options : solve_options) {
     BackendRun run;
     run.backend = run_options.backend;
-    run.result = solve(*qp, run_options);
+    if (scene.steps.empty()) {
+      run.result = solve(*qp, run_options);
+    } else {
+      auto step_model = std::make_shared<Model>(*model);
+      auto step_qp = std::make_shared<QuadraticProgram>(*qp);
+      run.result = solve_load_steps(*step_model, *step_qp, scene, run_options);
+      last_model = step_model;
+      last_qp = step_qp;
+    }
     run.result.K_factor.reset();  // a factor per backend is memory the next one may need
-    run.certificate = certify(*qp, run.result.u, run.result.lambda, run.result.lambda_t, &K_factor);
-    run.contact = summarize_contact(*model, *qp, run.result.u, run.result.lambda);
-    if (!model->bodies.empty() && model->scene.obstacles.empty()) {
+    const Model& run_model = *last_model;
+    const QuadraticProgram& run_qp = *last_qp;
+    run.certificate = certify(run_qp, run.result.u, run.result.lambda, run.result.lambda_t, &K_factor);
+    run.contact = summarize_contact(run_model, run_qp, run.result.u, run.result.lambda);
+    if (!run_model.bodies.empty() && run_model.scene.obstacles.empty()) {
       // Bodies without obstacles: the table's zone is the first pair's.
-      const std::vector<PairContact> pairs = summarize_pairs(*model, *qp, run.result.u, run.result.lambda);
+      const std::vector<PairContact> pairs = summarize_pairs(run_model, run_qp, run.result.u, run.result.lambda);
       if (!pairs.empty()) {
         run.contact.total_force = pairs[0].total_force;
         run.contact.half_width = pairs[0].half_width;
@@ -110,6 +124,8 @@ CompareReport compare_scene(const Scene& scene, const CompareOptions& options) {
     report.runs.push_back(std::move(run));
   }
 
+  report.model = last_model;  // with load steps, the last step's (loads, offset) of the last backend
+  report.qp = last_qp;
   std::vector<BackendRun>& runs = report.runs;
   report.reference = choose_reference(runs);
   if (report.reference >= 0)

@@ -17,21 +17,6 @@ std::string type_name(const nlohmann::json& value) {
   return "an object";
 }
 
-size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diagonal = row[0];
-    row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
 }  // namespace
 
 std::string describe(const nlohmann::json& value) {
@@ -46,25 +31,6 @@ double as_number(const nlohmann::json& value, const std::string& path) {
   const double x = value.get<double>();
   if (!std::isfinite(x)) throw InputError(path, "= " + describe(value) + ": must be finite");
   return x;
-}
-
-std::string nearest(const std::string& word, const std::vector<std::string>& valid) {
-  std::string best;
-  size_t best_distance = std::max<size_t>(3, word.size() / 2) + 1;
-  for (const std::string& candidate : valid) {
-    std::string lower_word = word, lower_candidate = candidate;
-    std::transform(lower_word.begin(), lower_word.end(), lower_word.begin(), ::tolower);
-    std::transform(lower_candidate.begin(), lower_candidate.end(), lower_candidate.begin(), ::tolower);
-    size_t distance = edit_distance(lower_word, lower_candidate);
-    // A prefix ("tol" for "tolerance") is as good a hint as a typo.
-    if (lower_candidate.rfind(lower_word, 0) == 0 || lower_word.rfind(lower_candidate, 0) == 0)
-      distance = std::min<size_t>(distance, 1);
-    if (distance < best_distance) {
-      best_distance = distance;
-      best = candidate;
-    }
-  }
-  return best;
 }
 
 JsonObject::JsonObject(const nlohmann::json& value, std::string path) : json_(value), path_(std::move(path)) {

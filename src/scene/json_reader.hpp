@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "qp/words.hpp"
+
 namespace contactqp::detail {
 
 class JsonObject {
@@ -46,8 +48,5 @@ std::string describe(const nlohmann::json& value);
 
 // A JSON number as double, or InputError naming `path` when it is not a finite number.
 double as_number(const nlohmann::json& value, const std::string& path);
-
-// The valid word closest to `word` by edit distance, or "" when none is close.
-std::string nearest(const std::string& word, const std::vector<std::string>& valid);
 
 }  // namespace contactqp::detail

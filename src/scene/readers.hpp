@@ -18,9 +18,6 @@ Eigen::Vector3d read_vector(const nlohmann::json& value, const std::string& path
 // A direction: read_vector, non-zero, normalised.
 Eigen::Vector3d read_direction(const nlohmann::json& value, const std::string& path, int dim);
 
-// "a, b, c"
-std::string join(const std::vector<std::string>& words);
-
 // Throws `path = "value": unknown <what>; valid: a, b; did you mean "a"?`.
 [[noreturn]] void unknown_choice(const std::string& path, const std::string& value, const std::string& what,
                                  const std::vector<std::string>& valid);

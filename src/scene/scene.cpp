@@ -50,12 +50,6 @@ Eigen::Vector3d read_direction(const json& value, const std::string& path, int d
   return d / length;
 }
 
-std::string join(const std::vector<std::string>& words) {
-  std::string text;
-  for (const auto& word : words) text += (text.empty() ? "" : ", ") + word;
-  return text;
-}
-
 void unknown_choice(const std::string& path, const std::string& value, const std::string& what,
                     const std::vector<std::string>& valid) {
   const std::string hint = nearest(value, valid);

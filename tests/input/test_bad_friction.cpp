@@ -56,7 +56,7 @@ TEST_CASE("friction on a backend that does not solve it is refused, naming the b
     if (backend_solves(backend, qp)) continue;
     CAPTURE(to_string(backend));
     CHECK_THROWS_WITH(solve(qp, options_for(backend, 1e-8)),
-                      Contains("backend = " + to_string(backend) + ": does not solve") && Contains("tresca") &&
+                      Contains("backend = \"" + to_string(backend) + "\": does not solve") && Contains("tresca") &&
                           Contains("active_set"));
   }
 }

@@ -1,12 +1,16 @@
-// The registry: maps the Backend enum to an implementation, and does what every backend
-// shares — input validation, internal scaling, and the final guard against non-finite output.
+// solve(): what every backend shares — input validation, internal scaling, the hand-over to the
+// backend's registration (backend.hpp), and the final guard against non-finite output — and the
+// solver of K a backend works with.
+#include <algorithm>
 #include <cmath>
 
 #include "backend_options.hpp"
 #include "backends.hpp"
 #include "cleanup.hpp"
+#include "contactqp/backend.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/solve.hpp"
+#include "qp/words.hpp"
 #include "scaling.hpp"
 
 namespace contactqp {
@@ -57,22 +61,43 @@ void report_linear_solver(SolveResult& result) {
 
 namespace {
 
-SolveResult dispatch(const QuadraticProgram& qp, const SolveOptions& options) {
-  switch (options.backend) {
-    case Backend::Uzawa:
-      return solve_uzawa(qp, options);
-    case Backend::UzawaAccelerated:
-      return solve_uzawa_accelerated(qp, options);
-    case Backend::Ipopt:
-      return solve_ipopt(qp, options);
-    case Backend::Nlopt:
-      return solve_nlopt(qp, options);
-    case Backend::ActiveSet:
-      return solve_active_set(qp, options);
-    case Backend::Petsc:
-      return solve_petsc(qp, options);
+// The check of a backend that registered no check_options: every key addressed to it must be
+// one of its option_names.
+void check_option_names(const BackendRegistration& registration, const SolveOptions& options) {
+  const Backend backend = options.backend;
+  for (const auto& [key, value] : options_for(backend, options.backend_options)) {
+    if (std::find(registration.option_names.begin(), registration.option_names.end(), key) !=
+        registration.option_names.end())
+      continue;
+    if (registration.option_names.empty())
+      reject_options(backend, options.backend_options, "address other backends' options as <backend>.key=value");
+    const std::string hint = nearest(key, registration.option_names);
+    throw InputError(option_field(key), "= \"" + value + "\": not an option of " + registration.name +
+                                            "; valid: " + join(registration.option_names) +
+                                            (hint.empty() ? "" : "; did you mean \"" + hint + "\"?"));
   }
-  throw InputError("backend", "= " + std::to_string(static_cast<int>(options.backend)) + ": not a backend");
+}
+
+// solve() refuses a problem its backend does not solve, naming the backends that do.
+void check_problem_kind(const BackendRegistration& registration, const QuadraticProgram& qp) {
+  const ProblemKind kind = problem_kind(qp);
+  const bool kind_solved = std::find(registration.problem_kinds.begin(), registration.problem_kinds.end(), kind) !=
+                           registration.problem_kinds.end();
+  if (kind_solved && !qp.friction.empty() && qp.friction.n_directions > registration.max_friction_directions) {
+    std::vector<std::string> others;
+    for (Backend other : available_backends(qp)) others.push_back(to_string(other));
+    throw InputError("backend", "= \"" + registration.name + "\": does not solve 3D " + to_string(kind) +
+                                    " problems (2D only); backends that do: " +
+                                    join(others));
+  }
+  if (kind_solved) return;
+  std::vector<std::string> solved, others;
+  for (ProblemKind k : registration.problem_kinds) solved.push_back(to_string(k));
+  for (Backend other : available_backends(kind)) others.push_back(to_string(other));
+  throw InputError("backend",
+                   "= \"" + registration.name + "\": does not solve " + to_string(kind) + " problems (it solves " +
+                       join(solved) + "); " +
+                       (others.empty() ? "no backend built into this copy does" : "backends that do: " + join(others)));
 }
 
 void validate_options(const SolveOptions& options) {
@@ -83,29 +108,14 @@ void validate_options(const SolveOptions& options) {
     require(uzawa.rho > 0 && std::isfinite(uzawa.rho), "rho", uzawa.rho, "must be a positive number");
   require(options.active_set.max_dense_bytes > 0, "active_set.max_dense_bytes", options.active_set.max_dense_bytes,
           "must be positive");
-  require(backend_available(options.backend), "backend", to_string(options.backend),
-          "was not built into this copy of contactqp");
+  const std::shared_ptr<const BackendRegistration> registration = backend_registration(options.backend);
+  require(registration->available, "backend", to_string(options.backend), "was not built into this copy of contactqp");
   require(linear_solver_available(options.linear_solver), "linear_solver", to_string(options.linear_solver),
           "was not built into this copy of contactqp (PETSc absent at configure time)");
-  switch (options.backend) {
-    case Backend::Uzawa:
-    case Backend::UzawaAccelerated:
-      reject_options(options.backend, options.backend_options,
-                     "its step is --rho or solver.rho (address other backends' options as ipopt.key=value)");
-      break;
-    case Backend::Ipopt:
-      check_ipopt_options(options);
-      break;
-    case Backend::Nlopt:
-      check_nlopt_options(options);
-      break;
-    case Backend::ActiveSet:
-      check_active_set_options(options);
-      break;
-    case Backend::Petsc:
-      check_petsc_options(options);
-      break;
-  }
+  if (registration->check_options)
+    registration->check_options(options);
+  else
+    check_option_names(*registration, options);
 }
 
 }  // namespace
@@ -113,44 +123,11 @@ void validate_options(const SolveOptions& options) {
 
 void validate_options(const SolveOptions& options) { detail::validate_options(options); }
 
-bool backend_available(Backend backend) {
-  switch (backend) {
-    case Backend::Uzawa:
-      return true;
-    case Backend::UzawaAccelerated:
-      return true;
-#ifdef CONTACTQP_HAVE_IPOPT  // set by CMake when Ipopt was found (CONTACTQP_WITH_IPOPT)
-    case Backend::Ipopt:
-      return true;
-#else
-    case Backend::Ipopt:
-      return false;
-#endif
-#ifdef CONTACTQP_HAVE_NLOPT
-    case Backend::Nlopt:
-      return true;
-#else
-    case Backend::Nlopt:
-      return false;
-#endif
-    case Backend::ActiveSet:
-      return true;
-    case Backend::Petsc:  // the bound-constrained QP in PETSc, when PETSc was built in
-      return linear_solver_available(LinearSolverKind::Petsc);
-  }
-  return false;
-}
-
-std::vector<Backend> available_backends() {
-  std::vector<Backend> list;
-  for (Backend backend : all_backends())
-    if (backend_available(backend)) list.push_back(backend);
-  return list;
-}
-
 SolveResult solve(const QuadraticProgram& qp, const SolveOptions& options) {
   validate(qp);
   detail::validate_options(options);
+  const std::shared_ptr<const BackendRegistration> registration = backend_registration(options.backend);
+  detail::check_problem_kind(*registration, qp);
   if (qp.K_is_rank_share && options.backend != Backend::Petsc)
     throw InputError("backend",
                      "= " + to_string(options.backend) +
@@ -162,26 +139,30 @@ SolveResult solve(const QuadraticProgram& qp, const SolveOptions& options) {
   SolveResult result;
   if (options.scale) {
     const detail::QpScaling scaling = detail::choose_scaling(qp);
-    result = detail::dispatch(detail::scaled_qp(qp, scaling), detail::scaled_options(options, scaling));
+    result = registration->solve(detail::scaled_qp(qp, scaling), detail::scaled_options(options, scaling));
     detail::unscale_result(result, scaling);
   } else {
-    result = detail::dispatch(qp, options);
+    result = registration->solve(qp, options);
   }
 
   // The final guard: no NaN or Inf ever leaves solve(), nor numbers whose energy overflows.
+  // With friction λ_T has m · n_directions entries; without, none.
+  const long t_rows = qp.friction.empty() ? 0 : qp.friction.T.rows();
   if (result.u.size() != qp.n_dofs() || !result.u.allFinite() || result.lambda.size() != qp.n_constraints() ||
-      !result.lambda.allFinite()) {
+      !result.lambda.allFinite() || result.lambda_t.size() != t_rows || !result.lambda_t.allFinite()) {
     if (result.status == Status::Converged) {
       result.status = Status::NumericalError;
       result.message = "the backend returned a solution that is not finite";
     }
     result.u = VectorXd::Zero(qp.n_dofs());
     result.lambda = VectorXd::Zero(qp.n_constraints());
+    result.lambda_t = VectorXd::Zero(t_rows);
   } else if (detail::overflows(qp, result)) {
     if (result.status == Status::Converged) result.status = Status::NumericalError;
     result.message += "; its last iterate overflows (energy beyond double range) and is reported as u = 0, λ = 0";
     result.u = VectorXd::Zero(qp.n_dofs());
     result.lambda = VectorXd::Zero(qp.n_constraints());
+    result.lambda_t = VectorXd::Zero(t_rows);
   }
   detail::zero_separated_multipliers(qp, result, options.tol);
   detail::report_linear_solver(result);

@@ -1,0 +1,17 @@
+// The words of the error messages that refuse a name (a misspelled scene key, a boundary, a
+// backend): the list of valid ones and the "did you mean".
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace contactqp::detail {
+
+// "a, b, c"
+std::string join(const std::vector<std::string>& words);
+
+// The valid word closest to `word` by edit distance (case-insensitive; a prefix counts as one
+// edit), or "" when none is close.
+std::string nearest(const std::string& word, const std::vector<std::string>& valid);
+
+}  // namespace contactqp::detail
