@@ -1,6 +1,8 @@
 // Friction against closed forms (docs/friction.md): Cattaneo–Mindlin's stick zone, tangential
 // traction and slip displacement for two identical cylinders (2D) and spheres (3D, [.slow]),
-// the rigid-plane case beside them (Dundurs' β ≠ 0), full sliding, μ → 0 and a large μ.
+// the rigid-plane case beside them (Dundurs' β ≠ 0), full sliding, μ → 0 and a large μ. The
+// Mindlin scenes are [.slow] (about 30 s each on a quiet machine, 3e4 DOFs: b/R must be small,
+// docs/friction.md); full sliding and μ = 0 take seconds.
 #include <catch2/catch.hpp>
 
 #include "contactqp/run.hpp"
@@ -46,7 +48,7 @@ void check_mindlin(const RunReport& report, double c_tol, double l2_tol) {
 
 }  // namespace
 
-TEST_CASE("Cattaneo-Mindlin: two identical cylinders", "[validation][friction]") {
+TEST_CASE("Cattaneo-Mindlin: two identical cylinders", "[validation][friction][.slow]") {
   const RunReport report = run("scenes/mindlin-cylinders.json");
   check_mindlin(report, 0.03, 0.05);
   // Step 1 pressed the cylinders without a tangential load: for β = 0 nothing slips but the
@@ -55,7 +57,7 @@ TEST_CASE("Cattaneo-Mindlin: two identical cylinders", "[validation][friction]")
   CHECK(pressed.friction->tangential_force < 1e-2 * 0.3 * pressed.total_force);
 }
 
-TEST_CASE("Cattaneo-Mindlin: the tangential displacement that slip adds", "[validation][friction]") {
+TEST_CASE("Cattaneo-Mindlin: the tangential displacement that slip adds", "[validation][friction][.slow]") {
   // The same shear against a stuck contact (μ large): δ(1 − Q/Q_stuck) is what slip adds to the
   // distant points' relative displacement at Q, Mindlin's δ_t(Q) − Q δ_t'(0).
   const RunReport slipping = run("scenes/mindlin-cylinders.json");
@@ -73,7 +75,7 @@ TEST_CASE("Cattaneo-Mindlin: the tangential displacement that slip adds", "[vali
   }
 }
 
-TEST_CASE("Cattaneo-Mindlin on a rigid plane: beside the theory, with its beta", "[validation][friction]") {
+TEST_CASE("Cattaneo-Mindlin on a rigid plane: beside the theory, with its beta", "[validation][friction][.slow]") {
   const RunReport report = run("scenes/mindlin-on-plane.json");
   REQUIRE(report.steps.size() == 3);
   const ObstacleContact& plane = report.contact.obstacles[0];
@@ -93,7 +95,7 @@ TEST_CASE("Cattaneo-Mindlin on a rigid plane: beside the theory, with its beta",
 TEST_CASE("full sliding: the friction force is mu times the normal force and every node slips",
           "[validation][friction]") {
   const RunReport report = run("scenes/sliding-block.json", R"({"solver": {"tol": 1e-10}})");
-  REQUIRE(report.steps.size() == 6);
+  REQUIRE(report.steps.size() == 8);
   for (const StepReport& step : report.steps) REQUIRE(step.status == Status::Converged);
   const ObstacleContact& plane = report.contact.obstacles[0];
   CHECK(plane.friction->tangential_force == Approx(0.3 * plane.total_force).epsilon(1e-8));
