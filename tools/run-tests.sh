@@ -2,8 +2,8 @@
 # Builds and tests contactqp the way CI does (README: "Quick start"), in three stages:
 #   1. Release build, the whole test suite through ctest;
 #   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/);
-#   3. the libFuzzer target for the scene parser, built with clang, run for 60 s from the
-#      shipped scenes (build-fuzz/).
+#   3. the libFuzzer targets, built with clang (build-fuzz/): the scene parser from the shipped
+#      scenes and the mesh-file reader from the shipped scenes' meshes, 30 s each.
 # Any failure, sanitizer report or fuzzer finding stops the script with a non-zero status.
 set -eu
 cd "$(dirname "$0")/.."
@@ -54,13 +54,19 @@ UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   run_ctest build-asan
 stage_done 2
 
-echo "== 3/3 libFuzzer on the scene parser, 60 s"
+echo "== 3/3 libFuzzer on the scene parser and on mesh files, 30 s each"
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DCONTACTQP_BUILD_FUZZER=ON \
   -DCONTACTQP_BUILD_TESTS=OFF -DCONTACTQP_BUILD_BENCHMARKS=OFF -DCONTACTQP_BUILD_PYTHON=OFF
-cmake --build build-fuzz --target fuzz_scene -j$jobs
-rm -rf build-fuzz/corpus && mkdir -p build-fuzz/corpus && cp scenes/*.json build-fuzz/corpus/
-build-fuzz/fuzz/fuzz_scene build-fuzz/corpus -dict=fuzz/scene.dict -max_total_time=60 -timeout=10 \
+cmake --build build-fuzz --target fuzz_scene fuzz_mesh -j$jobs
+rm -rf build-fuzz/corpus build-fuzz/mesh-corpus && mkdir -p build-fuzz/corpus && cp scenes/*.json build-fuzz/corpus/
+build-fuzz/fuzz/fuzz_scene build-fuzz/corpus -dict=fuzz/scene.dict -max_total_time=30 -timeout=10 \
   -rss_limit_mb=2048 -artifact_prefix=build-fuzz/ -print_final_stats=1
+passed=$((passed + 1))
+# The seeds: every shipped scene's mesh, coarse, as .msh 4.1 and 2.2, binary and ASCII (stage 1's
+# contactqp meshes them, the gmsh program converts).
+/usr/bin/python3 tools/mesh_corpus.py build/contactqp build-fuzz/mesh-corpus
+build-fuzz/fuzz/fuzz_mesh build-fuzz/mesh-corpus -dict=fuzz/mesh.dict -max_total_time=30 -timeout=10 \
+  -rss_limit_mb=2048 -artifact_prefix=build-fuzz/mesh- -print_final_stats=1
 passed=$((passed + 1))
 stage_done 3
 

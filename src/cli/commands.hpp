@@ -11,7 +11,8 @@
 
 namespace CLI {
 class App;
-}
+class Option;
+}  // namespace CLI
 
 namespace contactqp::cli {
 
@@ -38,6 +39,9 @@ struct SolveArguments {
 };
 
 void add_solve_command(CLI::App& app, int& exit_status);
+// An option whose empty value would read as "not given" (--json "", --backend ""): given empty, it
+// is bad input naming the option, not silently ignored.
+CLI::Option* refuse_empty(CLI::Option* option);
 // --linear-solver and --petsc-options, shared by solve and compare.
 void add_linear_solver_options(CLI::App& command, SolveArguments& arguments);
 void add_compare_command(CLI::App& app, int& exit_status);

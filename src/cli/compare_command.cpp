@@ -129,14 +129,16 @@ void add_compare_command(CLI::App& app, int& exit_status) {
       "duality gap is <= 100 T and every pair agrees within 1e4 T in u and 1e5 T in lambda (relative 2-norms, "
       "T = --tol); 1 otherwise; 2 on bad input");
   command->add_option("scene", solve.scene_path, "Scene file (JSON)")->required();
-  command->add_option("--backends", arguments->backends,
-                      "Comma-separated backends among " + backend_names() + " (default: every available one)");
+  refuse_empty(
+      command->add_option("--backends", arguments->backends,
+                          "Comma-separated backends among " + backend_names() + " (default: every available one)"));
   CLI::Option* tol = command->add_option("--tol", solve.tol,
                                          "Relative tolerance T of every backend (default: the scene's solver.tol)");
-  command->add_option("--rho", solve.rho, "Uzawa step: auto, a number, or a fraction of rho_max like 0.5x");
+  refuse_empty(
+      command->add_option("--rho", solve.rho, "Uzawa step: auto, a number, or a fraction of rho_max like 0.5x"));
   CLI::Option* max_iterations =
       command->add_option("--max-iterations", solve.max_iterations, "Iteration limit of every backend (default 10000)");
-  command->add_option("--json", solve.json_path, "Write the comparison JSON here");
+  refuse_empty(command->add_option("--json", solve.json_path, "Write the comparison JSON here"));
   command->add_option("--max-elements", solve.max_elements, "Refuse meshes with more triangles (default 4000000)");
   add_linear_solver_options(*command, solve);
   command->add_option("--backend-option", solve.backend_options,

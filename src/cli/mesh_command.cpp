@@ -41,7 +41,7 @@ void add_mesh_command(CLI::App& app, int& exit_status) {
   CLI::App* command = app.add_subcommand(
       "mesh", "Write the mesh a scene is solved on to a Gmsh .msh file, for scenes that name it (\"shape\": \"mesh\")");
   command->add_option("scene", arguments->scene_path, "Scene file (JSON)")->required();
-  command->add_option("-o,--output", arguments->output_path, "The .msh file to write")->required();
+  refuse_empty(command->add_option("-o,--output", arguments->output_path, "The .msh file to write"))->required();
   command->add_option("--max-elements", arguments->max_elements, "Refuse meshes with more elements (default 4000000)");
   command->callback([arguments, &exit_status] { exit_status = run_mesh(*arguments); });
 }

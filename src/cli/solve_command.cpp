@@ -129,9 +129,17 @@ void add_backend_options(const std::vector<std::string>& pairs, SolveOptions& op
   }
 }
 
+CLI::Option* refuse_empty(CLI::Option* option) {
+  const std::string name = option->get_name();
+  return option->each([name](const std::string& value) {
+    if (value.empty()) throw InputError(name, "= \"\": must not be empty (leave the option out for the default)");
+  });
+}
+
 void add_linear_solver_options(CLI::App& command, SolveArguments& arguments) {
-  command.add_option("--linear-solver", arguments.linear_solver,
-                     "Solver of K for the backends: cholmod (default, direct) or petsc (KSP, CG + GAMG by default)");
+  refuse_empty(command.add_option(
+      "--linear-solver", arguments.linear_solver,
+      "Solver of K for the backends: cholmod (default, direct) or petsc (KSP, CG + GAMG by default)"));
   command
       .add_option("--petsc-options", arguments.petsc_options,
                   "PETSc options database entries, passed through unchanged, e.g. --petsc-options=\"-ksp_type minres\" "
@@ -144,17 +152,19 @@ void add_solve_command(CLI::App& app, int& exit_status) {
   CLI::App* command =
       app.add_subcommand("solve", "Solve one scene and report contact pressure, certificate and Hertz errors");
   command->add_option("scene", arguments->scene_path, "Scene file (JSON)")->required();
-  command->add_option("--backend", arguments->backend,
-                      "Optimisation backend: " + backend_names() + " (overrides solver.backend)");
+  refuse_empty(command->add_option("--backend", arguments->backend,
+                                   "Optimisation backend: " + backend_names() + " (overrides solver.backend)"));
   CLI::Option* tol =
       command->add_option("--tol", arguments->tol, "Relative tolerance of the stopping rule (default 1e-8)");
-  command->add_option("--rho", arguments->rho, "Uzawa step: auto, a number, or a fraction of rho_max like 0.5x");
+  refuse_empty(
+      command->add_option("--rho", arguments->rho, "Uzawa step: auto, a number, or a fraction of rho_max like 0.5x"));
   CLI::Option* max_iterations =
       command->add_option("--max-iterations", arguments->max_iterations, "Iteration limit (default 10000)");
-  command->add_option("--json", arguments->json_path, "Write the result JSON here");
-  command->add_option("--csv", arguments->csv_path, "Write the contact pressure profile CSV here");
-  command->add_option("--vtu", arguments->vtu_path,
-                      "Write the mesh, displacement, stresses, pressure and gap for ParaView (.vtu) here");
+  refuse_empty(command->add_option("--json", arguments->json_path, "Write the result JSON here"));
+  refuse_empty(command->add_option("--csv", arguments->csv_path, "Write the contact pressure profile CSV here"));
+  refuse_empty(
+      command->add_option("--vtu", arguments->vtu_path,
+                          "Write the mesh, displacement, stresses, pressure and gap for ParaView (.vtu) here"));
   command->add_option("--max-elements", arguments->max_elements, "Refuse meshes with more triangles (default 4000000)");
   command->add_option("--backend-option", arguments->backend_options,
                       "key=value passed to the backend (repeatable); ipopt.key=value addresses one backend");
@@ -162,7 +172,8 @@ void add_solve_command(CLI::App& app, int& exit_status) {
   command->add_flag("--phase-memory", arguments->phase_memory,
                     "Print the peak resident memory of each phase on stderr (Linux /proc)");
   command->add_flag("--quiet", arguments->quiet, "No progress line on stderr (shown on a terminal after 2 s)");
-  command->add_option("--ordering", arguments->ordering, "Fill-reducing ordering of K: amd (default), metis or auto");
+  refuse_empty(command->add_option("--ordering", arguments->ordering,
+                                   "Fill-reducing ordering of K: amd (default), metis or auto"));
   add_linear_solver_options(*command, *arguments);
   command->add_flag("--no-contact", arguments->no_contact,
                     "Drop the contact rows: one linear solve of the same K (the reference for timings)");

@@ -68,36 +68,19 @@ struct Rule {
   std::vector<double> weight;
 };
 
-void fill_rule(Rule<2>& r, int order) {
-  const detail::QuadraturePoint* points = nullptr;
-  const int n = detail::triangle_rule(order, points);
-  for (int k = 0; k < n; ++k) {
-    r.dN.push_back(detail::shape_gradients(order, points[k].xi, points[k].eta));
-    r.weight.push_back(points[k].weight);
+template <int dim>
+Rule<dim> make_rule(int order) {
+  Rule<dim> r;
+  for (const detail::CellPoint<dim>& q : detail::cell_rule<dim>(order)) {
+    r.dN.push_back(detail::cell_gradients<dim>(order, q.xi));
+    r.weight.push_back(q.weight);
   }
-}
-
-void fill_rule(Rule<3>& r, int order) {
-  const detail::TetrahedronPoint* points = nullptr;
-  const int n = detail::tetrahedron_rule(order, points);
-  for (int k = 0; k < n; ++k) {
-    r.dN.push_back(detail::tetrahedron_gradients(order, points[k].xi, points[k].eta, points[k].zeta));
-    r.weight.push_back(points[k].weight);
-  }
+  return r;
 }
 
 template <int dim>
 const Rule<dim>& rule_of(int order) {
-  static const Rule<dim> rules[2] = {[] {
-                                       Rule<dim> r;
-                                       fill_rule(r, 1);
-                                       return r;
-                                     }(),
-                                     [] {
-                                       Rule<dim> r;
-                                       fill_rule(r, 2);
-                                       return r;
-                                     }()};
+  static const Rule<dim> rules[2] = {make_rule<dim>(1), make_rule<dim>(2)};
   return rules[order - 1];
 }
 

@@ -13,39 +13,72 @@
 namespace contactqp::detail {
 namespace {
 
-// ∫ N_i t(x) ds over the edges of a 2D boundary, t given per point by `traction(dx)`, where
-// dx is dx/dt along the edge (body on its left, so the outward normal is (dx_y, −dx_x)/|dx|).
-template <class Traction>
-void add_edge_loads(const Mesh& mesh, const std::string& boundary, double thickness, Traction traction,
-                    Eigen::VectorXd& f) {
-  for (const BoundaryFace& edge : mesh.boundaries.at(boundary)) {
-    const bool quadratic = edge.n_nodes == 3;
-    const Eigen::Vector3d* mid = quadratic ? &mesh.nodes[edge.nodes[2]] : nullptr;
+// A quadrature point of a boundary face — an edge in 2D, a triangle in 3D: the face's shape
+// values there, its area vector a (the outward normal times the face's measure per unit of the
+// rule's: (dx_y, −dx_x, 0) along an edge with the body on its left, ∂x/∂ξ × ∂x/∂η on a triangle)
+// and the rule's weight.
+struct FacePoint {
+  Eigen::VectorXd N;
+  Eigen::Vector3d a;
+  double weight;
+};
+
+std::vector<FacePoint> face_points(const Mesh& mesh, const BoundaryFace& face) {
+  std::vector<FacePoint> points;
+  if (mesh.dim == 2) {  // Gauss–Legendre, 3 points along the edge (a, b, mid-side node)
+    const Eigen::Vector3d* mid = face.n_nodes == 3 ? &mesh.nodes[face.nodes[2]] : nullptr;
     for (int q = 0; q < 3; ++q) {
-      const EdgePoint p = edge_point(kEdgeGaussT[q], mesh.nodes[edge.nodes[0]], mesh.nodes[edge.nodes[1]], mid);
-      const Eigen::Vector2d t = traction(Eigen::Vector2d(p.dx.head<2>())) * (kEdgeGaussW[q] * thickness);
-      for (int k = 0; k < edge.n_nodes; ++k) f.segment<2>(2 * edge.nodes[k]) += p.N[k] * t;
+      const EdgePoint p = edge_point(kEdgeGaussT[q], mesh.nodes[face.nodes[0]], mesh.nodes[face.nodes[1]], mid);
+      points.push_back({Eigen::Map<const Eigen::VectorXd>(p.N, face.n_nodes), Eigen::Vector3d(p.dx.y(), -p.dx.x(), 0.0),
+                        kEdgeGaussW[q]});
     }
+    return points;
   }
+  const QuadraturePoint* rule = nullptr;
+  const int n_points = triangle_rule(mesh.order, rule);
+  Eigen::Matrix<double, 3, Eigen::Dynamic> X(3, face.n_nodes);
+  for (int k = 0; k < face.n_nodes; ++k) X.col(k) = mesh.nodes[face.nodes[k]];
+  for (int q = 0; q < n_points; ++q) {
+    const Eigen::Matrix<double, 2, Eigen::Dynamic> dN = shape_gradients(mesh.order, rule[q].xi, rule[q].eta);
+    points.push_back({shape_values(mesh.order, rule[q].xi, rule[q].eta),
+                      Eigen::Vector3d(X * dN.row(0).transpose()).cross(Eigen::Vector3d(X * dN.row(1).transpose())),
+                      rule[q].weight});
+  }
+  return points;
 }
 
-// ∫ N_i t(x) dA over the triangular faces of a 3D boundary, t given per point by
-// `traction(a)`, where a = ∂x/∂ξ × ∂x/∂η is the outward area vector per reference area.
+// ∫ N_i t(x) dA over the faces of a boundary, t given per point by `traction(a)` (a the area
+// vector above), times the thickness in 2D.
 template <class Traction>
-void add_face_loads(const Mesh& mesh, const std::string& boundary, Traction traction, Eigen::VectorXd& f) {
-  const int order = mesh.order;
-  const QuadraturePoint* rule = nullptr;
-  const int n_points = triangle_rule(order, rule);
-  for (const BoundaryFace& face : mesh.boundaries.at(boundary)) {
-    Eigen::Matrix<double, 3, Eigen::Dynamic> X(3, face.n_nodes);
-    for (int k = 0; k < face.n_nodes; ++k) X.col(k) = mesh.nodes[face.nodes[k]];
-    for (int q = 0; q < n_points; ++q) {
-      const Eigen::VectorXd N = shape_values(order, rule[q].xi, rule[q].eta);
-      const Eigen::Matrix<double, 2, Eigen::Dynamic> dN = shape_gradients(order, rule[q].xi, rule[q].eta);
-      const Eigen::Vector3d a =
-          Eigen::Vector3d(X * dN.row(0).transpose()).cross(Eigen::Vector3d(X * dN.row(1).transpose()));
-      const Eigen::Vector3d t = traction(a) * rule[q].weight;
-      for (int k = 0; k < face.n_nodes; ++k) f.segment<3>(3 * face.nodes[k]) += N[k] * t;
+void add_boundary_loads(const Mesh& mesh, const std::string& boundary, double thickness, Traction traction,
+                        Eigen::VectorXd& f) {
+  const int dim = mesh.dim;
+  for (const BoundaryFace& face : mesh.boundaries.at(boundary))
+    for (const FacePoint& p : face_points(mesh, face)) {
+      const Eigen::Vector3d t = traction(p.a) * (p.weight * thickness);
+      for (int k = 0; k < face.n_nodes; ++k) f.segment(dim * face.nodes[k], dim) += p.N[k] * t.head(dim);
+    }
+}
+
+// ∫ N_i b dV over `elements` (b the force per volume), times the thickness in 2D. The
+// centroid rule integrates N_i exactly for 3-node triangles and 4-node tetrahedra; 6-node
+// triangles use Dunavant's rule, exact for N_i on straight sides (vertices get 0, mid-sides
+// area/3), 10-node tetrahedra the 4-point degree-2 rule, exact for straight ones (vertices
+// −V/20, mid-edges V/5).
+template <int dim>
+void add_body_force(const Mesh& mesh, const std::vector<int>& elements, const Eigen::Vector3d& b3, double thickness,
+                    Eigen::VectorXd& f) {
+  const Eigen::Matrix<double, dim, 1> b = b3.head<dim>();
+  const int npe = mesh.nodes_per_element();
+  const std::vector<CellPoint<dim>> rule = cell_rule<dim>(mesh.order);
+  Eigen::Matrix<double, dim, Eigen::Dynamic> X(dim, npe);
+  for (int e : elements) {
+    const int* v = mesh.element(e);
+    for (int i = 0; i < npe; ++i) X.col(i) = mesh.nodes[v[i]].head<dim>();
+    for (const CellPoint<dim>& q : rule) {
+      const double detJ = (cell_gradients<dim>(mesh.order, q.xi) * X.transpose()).determinant();
+      const Eigen::VectorXd N = cell_values<dim>(mesh.order, q.xi);
+      for (int i = 0; i < npe; ++i) f.segment<dim>(dim * v[i]) += (q.weight * detJ * thickness * N[i]) * b;
     }
   }
 }
@@ -58,41 +91,10 @@ void add_gravity(const Mesh& mesh, const GravityLoad& load, double thickness, Ei
   } else {
     elements = mesh.regions.at(load.region);
   }
-  const int npe = mesh.nodes_per_element();
-  if (mesh.dim == 2) {
-    const Eigen::Vector2d b2 = b.head<2>();
-    const QuadraturePoint* rule = nullptr;
-    const int n_points = triangle_rule(mesh.order, rule);
-    for (int e : elements) {
-      const int* v = mesh.element(e);
-      Eigen::Matrix<double, 2, Eigen::Dynamic> X(2, npe);
-      for (int i = 0; i < npe; ++i) X.col(i) = mesh.nodes[v[i]].head<2>();
-      // The centroid rule integrates N_i exactly only for 3-node triangles; 6-node ones use
-      // Dunavant's rule, exact for N_i on straight sides (vertices get 0, mid-sides area/3).
-      for (int k = 0; k < n_points; ++k) {
-        const QuadraturePoint& q = rule[k];
-        const double detJ = (shape_gradients(mesh.order, q.xi, q.eta) * X.transpose()).determinant();
-        const Eigen::VectorXd N = shape_values(mesh.order, q.xi, q.eta);
-        for (int i = 0; i < npe; ++i) f.segment<2>(2 * v[i]) += (q.weight * detJ * thickness * N[i]) * b2;
-      }
-    }
-    return;
-  }
-  // Tetrahedra: the centroid rule is exact for ∫ N_i of a straight 4-node one, the 4-point
-  // degree-2 rule for a straight 10-node one (vertices −V/20, mid-edges V/5).
-  const TetrahedronPoint* rule = nullptr;
-  const int n_points = tetrahedron_rule(mesh.order, rule);
-  for (int e : elements) {
-    const int* v = mesh.element(e);
-    Eigen::Matrix<double, 3, Eigen::Dynamic> X(3, npe);
-    for (int i = 0; i < npe; ++i) X.col(i) = mesh.nodes[v[i]];
-    for (int k = 0; k < n_points; ++k) {
-      const TetrahedronPoint& q = rule[k];
-      const double detJ = (tetrahedron_gradients(mesh.order, q.xi, q.eta, q.zeta) * X.transpose()).determinant();
-      const Eigen::VectorXd N = tetrahedron_values(mesh.order, q.xi, q.eta, q.zeta);
-      for (int i = 0; i < npe; ++i) f.segment<3>(3 * v[i]) += (q.weight * detJ * N[i]) * b;
-    }
-  }
+  if (mesh.dim == 2)
+    add_body_force<2>(mesh, elements, b, thickness, f);
+  else
+    add_body_force<3>(mesh, elements, b, thickness, f);
 }
 
 }  // namespace
@@ -127,7 +129,7 @@ std::vector<int> point_load_nodes(const Scene& scene, const Mesh& mesh, std::vec
 Eigen::VectorXd nodal_forces(const Scene& scene, const Mesh& mesh, const std::vector<int>& point_nodes) {
   const int dim = mesh.dim;
   Eigen::VectorXd f = Eigen::VectorXd::Zero(dim * mesh.n_nodes());
-  const double thickness = scene.body.thickness;
+  const double thickness = dim == 2 ? scene.body.thickness : 1.0;  // 3D: forces are not per a thickness
   // A point load on a symmetry plane: the modelled part carries its share of the force
   // (half on one plane, a quarter on the axis where two planes meet).
   std::vector<int> planes_of_node(mesh.n_nodes(), 0);
@@ -137,23 +139,14 @@ Eigen::VectorXd nodal_forces(const Scene& scene, const Mesh& mesh, const std::ve
     const LoadSpec& load = scene.loads[l];
     if (const auto* traction = load.as<TractionLoad>()) {
       const Eigen::Vector3d& t = traction->traction;
-      if (dim == 2)
-        add_edge_loads(
-            mesh, traction->boundary, thickness,
-            [&](const Eigen::Vector2d& dx) { return Eigen::Vector2d(dx.norm() * t.head<2>()); }, f);
-      else
-        add_face_loads(
-            mesh, traction->boundary, [&](const Eigen::Vector3d& a) { return Eigen::Vector3d(a.norm() * t); }, f);
+      add_boundary_loads(
+          mesh, traction->boundary, thickness, [&](const Eigen::Vector3d& a) { return Eigen::Vector3d(a.norm() * t); },
+          f);
     } else if (const auto* pressure = load.as<PressureLoad>()) {
-      // t = −p n_out; in 2D n_out |dx| = (dx_y, −dx_x), in 3D n_out |a| = a.
+      // t = −p n_out, and n_out times the measure is a.
       const double p = pressure->pressure;
-      if (dim == 2)
-        add_edge_loads(
-            mesh, pressure->boundary, thickness,
-            [&](const Eigen::Vector2d& dx) { return Eigen::Vector2d(-p * Eigen::Vector2d(dx.y(), -dx.x())); }, f);
-      else
-        add_face_loads(
-            mesh, pressure->boundary, [&](const Eigen::Vector3d& a) { return Eigen::Vector3d(-p * a); }, f);
+      add_boundary_loads(
+          mesh, pressure->boundary, thickness, [&](const Eigen::Vector3d& a) { return Eigen::Vector3d(-p * a); }, f);
     } else if (const auto* gravity = load.as<GravityLoad>()) {
       add_gravity(mesh, *gravity, thickness, f);
     } else if (const auto* point = load.as<PointLoad>()) {

@@ -116,4 +116,53 @@ Eigen::Vector3d reference_tetrahedron_node(int i) {
                 Eigen::Vector3d(vertex[b][0], vertex[b][1], vertex[b][2]));
 }
 
+template <>
+std::vector<CellPoint<2>> cell_rule<2>(int order) {
+  const QuadraturePoint* points = nullptr;
+  const int n = triangle_rule(order, points);
+  std::vector<CellPoint<2>> rule;
+  for (int k = 0; k < n; ++k) rule.push_back({Eigen::Vector2d(points[k].xi, points[k].eta), points[k].weight});
+  return rule;
+}
+
+template <>
+std::vector<CellPoint<3>> cell_rule<3>(int order) {
+  const TetrahedronPoint* points = nullptr;
+  const int n = tetrahedron_rule(order, points);
+  std::vector<CellPoint<3>> rule;
+  for (int k = 0; k < n; ++k)
+    rule.push_back({Eigen::Vector3d(points[k].xi, points[k].eta, points[k].zeta), points[k].weight});
+  return rule;
+}
+
+template <>
+Eigen::VectorXd cell_values<2>(int order, const Eigen::Vector2d& xi) {
+  return shape_values(order, xi.x(), xi.y());
+}
+
+template <>
+Eigen::VectorXd cell_values<3>(int order, const Eigen::Vector3d& xi) {
+  return tetrahedron_values(order, xi.x(), xi.y(), xi.z());
+}
+
+template <>
+Eigen::Matrix<double, 2, Eigen::Dynamic> cell_gradients<2>(int order, const Eigen::Vector2d& xi) {
+  return shape_gradients(order, xi.x(), xi.y());
+}
+
+template <>
+Eigen::Matrix<double, 3, Eigen::Dynamic> cell_gradients<3>(int order, const Eigen::Vector3d& xi) {
+  return tetrahedron_gradients(order, xi.x(), xi.y(), xi.z());
+}
+
+template <>
+Eigen::Vector2d cell_node<2>(int i) {
+  return reference_node(i);
+}
+
+template <>
+Eigen::Vector3d cell_node<3>(int i) {
+  return reference_tetrahedron_node(i);
+}
+
 }  // namespace contactqp::detail

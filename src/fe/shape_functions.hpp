@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace contactqp::detail {
 
@@ -54,5 +55,48 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> tetrahedron_gradients(int order, double
 
 // Reference coordinates of node i of a tetrahedron (vertices, then mid-edges).
 Eigen::Vector3d reference_tetrahedron_node(int i);
+
+// The reference cell of a dimension — the triangle (dim 2) or the tetrahedron (dim 3) — behind
+// one interface, for loops written once for both (body forces, stress recovery, the stiffness'
+// quadrature): the functions above, with the point as a vector.
+template <int dim>
+using ReferencePoint = Eigen::Matrix<double, dim, 1>;
+
+template <int dim>
+struct CellPoint {
+  ReferencePoint<dim> xi;
+  double weight;  // the weights sum to the reference cell's measure (½, 1/6)
+};
+
+// triangle_rule / tetrahedron_rule.
+template <int dim>
+std::vector<CellPoint<dim>> cell_rule(int order);
+// shape_values / tetrahedron_values.
+template <int dim>
+Eigen::VectorXd cell_values(int order, const ReferencePoint<dim>& xi);
+// shape_gradients / tetrahedron_gradients: row r holds dN_i/dξ_r.
+template <int dim>
+Eigen::Matrix<double, dim, Eigen::Dynamic> cell_gradients(int order, const ReferencePoint<dim>& xi);
+// reference_node / reference_tetrahedron_node.
+template <int dim>
+ReferencePoint<dim> cell_node(int i);
+
+// Defined for dim 2 and 3 only (shape_functions.cpp).
+template <>
+std::vector<CellPoint<2>> cell_rule<2>(int order);
+template <>
+std::vector<CellPoint<3>> cell_rule<3>(int order);
+template <>
+Eigen::VectorXd cell_values<2>(int order, const Eigen::Vector2d& xi);
+template <>
+Eigen::VectorXd cell_values<3>(int order, const Eigen::Vector3d& xi);
+template <>
+Eigen::Matrix<double, 2, Eigen::Dynamic> cell_gradients<2>(int order, const Eigen::Vector2d& xi);
+template <>
+Eigen::Matrix<double, 3, Eigen::Dynamic> cell_gradients<3>(int order, const Eigen::Vector3d& xi);
+template <>
+Eigen::Vector2d cell_node<2>(int i);
+template <>
+Eigen::Vector3d cell_node<3>(int i);
 
 }  // namespace contactqp::detail

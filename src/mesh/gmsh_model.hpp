@@ -34,7 +34,9 @@ class GmshSession {
 // physical points named nodes; an unnamed group is named by its tag ("3"). The elements of
 // each surface (volume) are turned positive as a whole when most are negative; an element
 // that then is still negative, degenerate or (quadratic) has a Jacobian changing sign is an
-// error naming its Gmsh element tag. Throws std::runtime_error.
+// error naming its Gmsh element tag. Throws std::runtime_error. (It is mesh_from_file_data,
+// mesh_file_data.hpp, on the model's contents: a .msh file read by msh_reader.cpp passes the
+// same checks.)
 Mesh mesh_from_gmsh(double scale = 1.0);
 
 // Throws std::runtime_error with Gmsh's last error message, if Gmsh logged one in this session.

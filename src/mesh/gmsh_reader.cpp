@@ -10,6 +10,7 @@
 
 #include "contactqp/errors.hpp"
 #include "gmsh_model.hpp"
+#include "msh_reader.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -43,14 +44,22 @@ Mesh read_gmsh_file(const GmshFileRequest& request) {
   // Gmsh opens a missing file as an empty model without a word: check first.
   if (!std::ifstream(request.path))
     throw InputError(request.path, "cannot be read: " + std::string(std::strerror(errno)));
+  if (!is_geo(request.path)) {
+    // A .msh is read by our own reader (msh_reader.hpp says why), never by Gmsh.
+    const MeshFileData data = read_msh_file(request.path);
+    try {
+      return mesh_from_file_data(data);
+    } catch (const std::runtime_error& error) {
+      throw InputError(request.path, std::string("cannot be used: ") + error.what());
+    }
+  }
   GmshSession session;
   try {
     gmsh::open(request.path);
     throw_if_gmsh_failed();
-    if (is_geo(request.path)) mesh_geometry(request);
+    mesh_geometry(request);
   } catch (...) {
-    throw InputError(request.path, "could not be " + std::string(is_geo(request.path) ? "meshed" : "read") +
-                                       " by Gmsh: " + gmsh_error_text());
+    throw InputError(request.path, "could not be meshed by Gmsh: " + gmsh_error_text());
   }
   try {
     return mesh_from_gmsh();

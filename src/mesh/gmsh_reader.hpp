@@ -14,7 +14,8 @@ struct GmshFileRequest {
 };
 
 // The body of the file (see mesh_from_gmsh for what is kept and what is an error). Throws
-// InputError naming the file on anything Gmsh cannot read or contactqp cannot use.
+// InputError naming the file on anything that cannot be read (msh_reader.hpp), meshed (Gmsh, a
+// .geo) or used.
 Mesh read_gmsh_file(const GmshFileRequest& request);
 
 }  // namespace contactqp::detail

@@ -8,6 +8,7 @@
 
 #include "contactqp/mesh_file.hpp"
 #include "gmsh_model.hpp"
+#include "io/temporary_file.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -88,18 +89,11 @@ void write_gmsh_file(const Mesh& mesh, const std::string& path) {
 namespace contactqp {
 
 void write_mesh_file(const Mesh& mesh, const std::string& path) {
-  namespace fs = std::filesystem;
   // Gmsh picks the format by the extension, so the temporary file ends in .msh too.
-  const fs::path target(path);
-  const fs::path temporary = target.parent_path() / ("." + target.filename().string() + ".partial.msh");
-  try {
-    detail::write_gmsh_file(mesh, temporary.string());
-    fs::rename(temporary, target);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw;
-  }
+  detail::TemporaryFile file(path, ".msh");
+  file.close_descriptor();
+  detail::write_gmsh_file(mesh, file.path());
+  file.commit();
 }
 
 }  // namespace contactqp

@@ -10,6 +10,7 @@
 #include "contact/contact.hpp"
 #include "contactqp/errors.hpp"
 #include "model_parts.hpp"
+#include "scene/obstacle_map.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -69,30 +70,9 @@ void choose_max_gap(const Scene& scene, Model& model) {
 }
 
 ObstacleSpec to_local(const ObstacleSpec& obstacle, const BodyPlacement& placement, int dim) {
-  ObstacleSpec local = obstacle;
-  auto point = [&](const Eigen::Vector3d& x) { return placement.to_local(x, dim); };
-  auto direction = [&](const Eigen::Vector3d& d) { return placement.direction_to_local(d, dim); };
-  std::visit(
-      [&](auto& shape) {
-        using Kind = std::decay_t<decltype(shape)>;
-        if constexpr (std::is_same_v<Kind, PlaneObstacle>) {
-          shape.point = point(shape.point);
-          shape.normal = direction(shape.normal);
-        } else if constexpr (std::is_same_v<Kind, ProfileObstacle>) {
-          for (Eigen::Vector3d& x : shape.points) x = point(x);
-          if (placement.mirror) shape.body_on_left = !shape.body_on_left;  // a reflection swaps the sides
-        } else if constexpr (std::is_same_v<Kind, CylinderObstacle>) {
-          shape.point = point(shape.point);
-          shape.axis = direction(shape.axis);
-        } else if constexpr (std::is_same_v<Kind, PunchObstacle>) {
-          shape.center = point(shape.center);
-          shape.axis = direction(shape.axis);
-        } else {  // circle, sphere
-          shape.center = point(shape.center);
-        }
-      },
-      local.shape);
-  return local;
+  return detail::mapped(
+      obstacle, {[&](const Eigen::Vector3d& x) { return placement.to_local(x, dim); },
+                 [&](const Eigen::Vector3d& d) { return placement.direction_to_local(d, dim); }, placement.mirror});
 }
 
 // A generated body's boundary as a rigid stand-in (global frame), to refine the other side of

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "contactqp/errors.hpp"
+#include "per_kind.hpp"
 #include "readers.hpp"
 
 namespace contactqp::detail {
@@ -127,12 +128,11 @@ ObstacleSpec read_obstacle(JsonObject obstacle, int dim) {
 namespace contactqp {
 
 std::string ObstacleSpec::type() const {
-  if (is<PlaneObstacle>()) return "plane";
-  if (is<CircleObstacle>()) return "circle";
-  if (is<ProfileObstacle>()) return "profile";
-  if (is<SphereObstacle>()) return "sphere";
-  if (is<CylinderObstacle>()) return "cylinder";
-  return "punch";
+  return std::visit(
+      detail::PerKind{[](const PlaneObstacle&) { return "plane"; }, [](const CircleObstacle&) { return "circle"; },
+                      [](const ProfileObstacle&) { return "profile"; }, [](const SphereObstacle&) { return "sphere"; },
+                      [](const CylinderObstacle&) { return "cylinder"; }, [](const PunchObstacle&) { return "punch"; }},
+      shape);
 }
 
 }  // namespace contactqp

@@ -3,15 +3,12 @@
 #include "contactqp/scene.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "contactqp/errors.hpp"
+#include "io/input_file.hpp"
 #include "readers.hpp"
+#include "scene_keys.hpp"
 
 namespace contactqp {
 namespace {
@@ -252,27 +249,10 @@ UzawaOptions parse_rho(const std::string& text, const std::string& field) {
 }
 
 Scene parse_scene(const std::string& json_text, const std::string& source) {
-  json document;
-  // Printing a value in an error message recurses once per level: 100 000 nested brackets
-  // overflowed the stack. A scene nests a few levels; refuse deep nesting while parsing.
-  constexpr int kMaxDepth = 64;
-  const json::parser_callback_t limit_depth = [&](int depth, json::parse_event_t event, json&) {
-    if (depth > kMaxDepth && (event == json::parse_event_t::object_start || event == json::parse_event_t::array_start))
-      throw InputError(
-          source, "is not a scene: arrays and objects nested deeper than " + std::to_string(kMaxDepth) + " levels");
-    return true;
-  };
-  try {
-    document = json::parse(json_text, limit_depth);
-  } catch (const json::exception& error) {  // a syntax error, or a number beyond double range (1e999)
-    std::string what = error.what();
-    const auto bracket = what.find("] ");
-    if (bracket != std::string::npos) what = what.substr(bracket + 2);
-    // The parser quotes what it read last, which may be any bytes: keep the message readable.
-    for (char& c : what)
-      if (static_cast<unsigned char>(c) >= 0x80) c = '?';
-    throw InputError(source, "is not valid JSON: " + what);
-  }
+  const json document = detail::parse_json(json_text, source);
+  // Every unknown key, at any depth, before any reader can find a key missing: a renamed
+  // "material.nu" is reported as the unknown key it is, not as "material.nu is missing".
+  detail::check_scene_keys(document);
   Scene scene;
   scene.source = source;
   JsonObject root(document, "");
@@ -328,15 +308,6 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   return scene;
 }
 
-Scene load_scene(const std::string& path) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) throw InputError(path, "is a directory, not a scene file");
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path, "cannot be read: " + std::string(std::strerror(errno)));
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) throw InputError(path, "cannot be read");
-  return parse_scene(text.str(), path);
-}
+Scene load_scene(const std::string& path) { return parse_scene(detail::read_input_file(path, "scene file"), path); }
 
 }  // namespace contactqp

@@ -1,10 +1,12 @@
 // body.symmetry models only x ≥ 0 in 2D, the quarter x ≥ 0, y ≥ 0 in 3D (or the half beside the
-// one plane "symmetry": "x" or "y" names), with the normal displacement held on each cut. That is right only when the whole scene is mirror-symmetric
-// about x = 0 (and y = 0) in its own frame (the transform turns the symmetric scene as a
+// one plane "symmetry": "x" or "y" names), with the normal displacement held on each cut. That
+// is right only when the whole scene is mirror-symmetric about x = 0 (and y = 0) in its own frame (the transform turns the symmetric scene as a
 // whole, so the check ignores it).
+#include <algorithm>
 #include <cmath>
 
 #include "contactqp/errors.hpp"
+#include "per_kind.hpp"
 #include "readers.hpp"
 
 namespace contactqp::detail {
@@ -20,34 +22,52 @@ namespace {
 bool on_plane(const Eigen::Vector3d& point, int c) { return point[c] == 0; }
 bool in_plane(const Eigen::Vector3d& direction, int c) { return std::abs(direction[c]) <= 1e-12; }
 
-std::string mirror_rule(const ObstacleSpec& o, const std::string& axis) {
-  if (o.is<PlaneObstacle>()) return ": its point must have " + axis + " = 0 and its normal no " + axis + " component)";
-  if (o.is<ProfileObstacle>()) return ": its points must mirror each other end to end)";
-  if (o.is<CylinderObstacle>())
-    return ": its axis must lie in the plane " + axis + " = 0 or cross it at right angles through a point with " +
-           axis + " = 0)";
-  if (o.is<PunchObstacle>()) return ": its center must have " + axis + " = 0 and its axis no " + axis + " component)";
-  return ": its center must have " + axis + " = 0)";
-}
+// Whether the obstacle is its own mirror image about the plane x_c = 0, and if not, the rule it
+// breaks (axis: "x" or "y"), kind by kind.
+struct Mirror {
+  bool symmetric;
+  std::string rule;
+};
 
-bool mirror_symmetric(const ObstacleSpec& o, int c) {
-  if (const auto* p = o.as<PlaneObstacle>()) return in_plane(p->normal, c) && on_plane(p->point, c);
-  if (const auto* circle = o.as<CircleObstacle>()) return on_plane(circle->center, c);
-  if (const auto* sphere = o.as<SphereObstacle>()) return on_plane(sphere->center, c);
-  if (const auto* punch = o.as<PunchObstacle>()) return on_plane(punch->center, c) && in_plane(punch->axis, c);
-  if (const auto* cylinder = o.as<CylinderObstacle>())
-    return (in_plane(cylinder->axis, c) && on_plane(cylinder->point, c)) ||
-           std::abs(std::abs(cylinder->axis[c]) - 1) <= 1e-12;
-  // A profile is its own mirror image walked backwards: point i mirrors point n − 1 − i.
-  const auto& points = o.as<ProfileObstacle>()->points;
-  const size_t n = points.size();
-  for (size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d& p = points[i];
-    const Eigen::Vector3d& q = points[n - 1 - i];
-    const double scale = std::max({1e-300, p.norm(), q.norm()});
-    if (std::abs(p.x() + q.x()) > 1e-12 * scale || std::abs(p.y() - q.y()) > 1e-12 * scale) return false;
-  }
-  return true;
+Mirror mirror(const ObstacleSpec& o, int c, const std::string& axis) {
+  const std::string center_rule = ": its center must have " + axis + " = 0)";
+  return std::visit(
+      PerKind{
+          [&](const PlaneObstacle& p) {
+            return Mirror{in_plane(p.normal, c) && on_plane(p.point, c),
+                          ": its point must have " + axis + " = 0 and its normal no " + axis + " component)"};
+          },
+          [&](const CircleObstacle& circle) {
+            return Mirror{on_plane(circle.center, c), center_rule};
+          },
+          [&](const SphereObstacle& sphere) {
+            return Mirror{on_plane(sphere.center, c), center_rule};
+          },
+          [&](const PunchObstacle& punch) {
+            return Mirror{on_plane(punch.center, c) && in_plane(punch.axis, c),
+                          ": its center must have " + axis + " = 0 and its axis no " + axis + " component)"};
+          },
+          [&](const CylinderObstacle& cylinder) {
+            return Mirror{(in_plane(cylinder.axis, c) && on_plane(cylinder.point, c)) ||
+                              std::abs(std::abs(cylinder.axis[c]) - 1) <= 1e-12,
+                          ": its axis must lie in the plane " + axis +
+                              " = 0 or cross it at right angles through a point with " + axis + " = 0)"};
+          },
+          [&](const ProfileObstacle& profile) {
+            // A profile is its own mirror image walked backwards: point i mirrors point n − 1 − i.
+            const auto& points = profile.points;
+            const size_t n = points.size();
+            bool symmetric = true;
+            for (size_t i = 0; i < n; ++i) {
+              const Eigen::Vector3d& p = points[i];
+              const Eigen::Vector3d& q = points[n - 1 - i];
+              const double scale = std::max({1e-300, p.norm(), q.norm()});
+              if (std::abs(p.x() + q.x()) > 1e-12 * scale || std::abs(p.y() - q.y()) > 1e-12 * scale) symmetric = false;
+            }
+            return Mirror{symmetric, ": its points must mirror each other end to end)"};
+          },
+      },
+      o.shape);
 }
 
 }  // namespace
@@ -60,7 +80,8 @@ void check_symmetry(const Scene& scene) {
     const std::string axis = c == 0 ? "x" : "y";
     const std::string plane = axis + " = 0";
     for (const ObstacleSpec& o : scene.obstacles)
-      if (!mirror_symmetric(o, c)) broken(scene.body, o.path + " (" + o.type() + mirror_rule(o, axis), plane);
+      if (const Mirror m = mirror(o, c, axis); !m.symmetric)
+        broken(scene.body, o.path + " (" + o.type() + m.rule, plane);
     for (const LoadSpec& load : scene.loads) {
       if (const auto* d = load.as<DisplacementLoad>(); d && d->value[c] && *d->value[c] != 0.0)
         broken(scene.body, load.path + " has u" + axis + " = " + format_value(*d->value[c]), plane);

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "contactqp/errors.hpp"
+#include "obstacle_map.hpp"
 #include "readers.hpp"
 
 namespace contactqp {
@@ -48,27 +49,9 @@ Scene rotated(const Scene& scene) {
   out.transform = TransformSpec{};
   if (scene.transform.is_identity()) return out;
   const Eigen::Matrix3d R = scene.transform.rotation();
-  for (ObstacleSpec& obstacle : out.obstacles) {
-    std::visit(
-        [&](auto& o) {
-          using Kind = std::decay_t<decltype(o)>;
-          if constexpr (std::is_same_v<Kind, PlaneObstacle>) {
-            o.point = R * o.point;
-            o.normal = R * o.normal;
-          } else if constexpr (std::is_same_v<Kind, ProfileObstacle>) {
-            for (Eigen::Vector3d& point : o.points) point = R * point;
-          } else if constexpr (std::is_same_v<Kind, CylinderObstacle>) {
-            o.point = R * o.point;
-            o.axis = R * o.axis;
-          } else if constexpr (std::is_same_v<Kind, PunchObstacle>) {
-            o.center = R * o.center;
-            o.axis = R * o.axis;
-          } else {
-            o.center = R * o.center;  // circle, sphere
-          }
-        },
-        obstacle.shape);
-  }
+  const detail::RigidMap turn{[&R](const Eigen::Vector3d& x) { return Eigen::Vector3d(R * x); },
+                              [&R](const Eigen::Vector3d& d) { return Eigen::Vector3d(R * d); }};
+  for (ObstacleSpec& obstacle : out.obstacles) obstacle = detail::mapped(obstacle, turn);
   // Traction, g and point force turn; a displacement's components stay along the scene's axes
   // and a pressure is normal to the (turned) boundary.
   for (LoadSpec& load : out.loads) {
@@ -87,6 +70,9 @@ namespace detail {
 TransformSpec read_transform(JsonObject transform, int dim) {
   TransformSpec spec;
   spec.rotate_degrees = transform.number("rotate_degrees");
+  // A turn is a turn: anything beyond one is a mistake (and 1e308 once overflowed the quarter count).
+  require(std::abs(spec.rotate_degrees) <= 360, transform.path_of("rotate_degrees"), spec.rotate_degrees,
+          "must lie in [-360, 360]");
   // 2D scenes turn about z only: an axis there is an unknown key.
   if (dim == 3) spec.axis = read_direction(transform.value("axis"), transform.path_of("axis"), 3);
   transform.finish();

@@ -114,13 +114,6 @@ std::vector<BadScene> bad_scenes(const std::string& inverted_msh, const std::str
   };
 }
 
-std::vector<std::string> listing(const std::string& directory) {
-  std::vector<std::string> names;
-  for (const auto& entry : std::filesystem::directory_iterator(directory)) names.push_back(entry.path().filename());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 }  // namespace
 
 TEST_CASE("bad 3D input: exit 2, one line naming the field or element, nothing written", "[input][cli][3d]") {
@@ -134,14 +127,14 @@ TEST_CASE("bad 3D input: exit 2, one line naming the field or element, nothing w
     CAPTURE(bad.text, bad.names);
     const std::string scene = directory.path("scene" + std::to_string(k++) + ".json");
     std::ofstream(scene) << bad.text;
-    const auto before = listing(directory.path(""));
+    const auto before = directory_listing(directory.path(""));
     const std::string outputs = " --json " + directory.path("out.json") + " --csv " + directory.path("out.csv") +
                                 " --vtu " + directory.path("out.vtu");
     const CliRun run = run_cli("solve " + scene + outputs);
     CHECK(run.exit_status == 2);
     CHECK(run.err.find(bad.names) != std::string::npos);
     CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
-    CHECK(listing(directory.path("")) == before);
+    CHECK(directory_listing(directory.path("")) == before);
   }
 }
 

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -141,6 +142,42 @@ TemporaryDirectory::~TemporaryDirectory() {
   std::error_code error;
   std::filesystem::remove_all(directory_, error);
 }
+
+std::vector<std::string> directory_listing(const std::string& directory) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(directory)) names.push_back(entry.path().filename());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+const char* const kUnitSquareMsh = R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$PhysicalNames
+5
+1 1 "bottom"
+1 2 "right"
+1 3 "top"
+1 4 "left"
+2 5 "body"
+$EndPhysicalNames
+$Nodes
+4
+1 0 0 0
+2 1 0 0
+3 1 1 0
+4 0 1 0
+$EndNodes
+$Elements
+6
+1 1 2 1 1 1 2
+2 1 2 2 2 2 3
+3 1 2 3 3 3 4
+4 1 2 4 4 4 1
+5 2 2 5 1 1 2 3
+6 2 2 5 1 1 3 4
+$EndElements
+)";
 
 std::string patched_scene(const std::string& relative, const std::string& merge_patch) {
   nlohmann::json scene = nlohmann::json::parse(read_text(source_path(relative)));

@@ -60,6 +60,14 @@ class TemporaryDirectory {
   std::string directory_;
 };
 
+// The names of the files in a directory, sorted: a failed run must leave it as it was (no
+// result, no temporary file).
+std::vector<std::string> directory_listing(const std::string& directory);
+
+// A unit square of two 3-node triangles with its sides named "bottom", "right", "top", "left"
+// and the surface "body": a .msh file (Gmsh 2.2, ASCII) for tests to break in one way each.
+extern const char* const kUnitSquareMsh;
+
 // The shipped scene with some JSON patched in, e.g. patch_scene("scenes/hertz.json",
 // R"({"material": {"E": 1e9}})") merges like JSON Merge Patch (RFC 7386).
 std::string patched_scene(const std::string& relative, const std::string& merge_patch);
