@@ -86,8 +86,7 @@ void check_problem_kind(const BackendRegistration& registration, const Quadratic
     std::vector<std::string> others;
     for (Backend other : available_backends(qp)) others.push_back(to_string(other));
     throw InputError("backend", "= \"" + registration.name + "\": does not solve 3D " + to_string(kind) +
-                                    " problems (2D only); backends that do: " +
-                                    join(others));
+                                    " problems (2D only); backends that do: " + join(others));
   }
   if (kind_solved) return;
   std::vector<std::string> solved, others;

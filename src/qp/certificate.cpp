@@ -122,7 +122,7 @@ Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorX
   const VectorXd Ku = K_times(qp, u);
   const VectorXd Btl = qp.B.transpose() * lambda;
   VectorXd r = Ku - qp.f + Btl + qp.friction.T.transpose() * lambda_t;  // stationarity residual
-  const VectorXd slack = qp.B * u - qp.g;                                // ≤ 0 when feasible
+  const VectorXd slack = qp.B * u - qp.g;                               // ≤ 0 when feasible
 
   const double F = force_scale(qp, u, lambda, lambda_t);
   const double L = length_scale(qp, u);
