@@ -8,7 +8,7 @@
 include(CMakePackageConfigHelpers)
 set(CONTACTQP_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/contactqp)
 
-install(TARGETS cqp_qp cqp_solvers cqp_fe cqp_run contactqp_library
+install(TARGETS cqp_qp cqp_solvers cqp_fe cqp_run cqp_petsc contactqp_library
         EXPORT contactqpTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -28,14 +28,15 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/contactqpConfig.cmake ${CMAKE_CURRENT_
 # pkg-config: the archives in link order, then what they need (static libraries carry no
 # dependency list of their own).
 set(CONTACTQP_PC_REQUIRES "eigen3")
+# PETSc and MPI before Ipopt: its sequential MUMPS defines stub MPI functions (CMakeLists.txt, contactqp_library).
+if(CONTACTQP_WITH_PETSC)
+  string(APPEND CONTACTQP_PC_REQUIRES " PETSc ompi-cxx")
+endif()
 if(CONTACTQP_HAVE_IPOPT)
   string(APPEND CONTACTQP_PC_REQUIRES " ipopt")
 endif()
 if(CONTACTQP_HAVE_NLOPT)
   string(APPEND CONTACTQP_PC_REQUIRES " nlopt")
-endif()
-if(CONTACTQP_WITH_PETSC)
-  string(APPEND CONTACTQP_PC_REQUIRES " PETSc ompi-cxx")
 endif()
 # Every library's list of built-in registrations (cmake/builtins.cmake) is kept in the link the
 # way the CMake package keeps it: -Wl,--undefined=<its symbol> before the archives.

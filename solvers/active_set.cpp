@@ -68,7 +68,7 @@ void check_active_set_options(const SolveOptions& options) { effective_options(o
 
 // The frictionless problem (or one whose friction exerts no force): condense B, solve the LCP.
 SolveResult solve_condensed_lcp(const QuadraticProgram& qp, const SolveOptions& options,
-                                       const ActiveSetOptions& settings) {
+                                const ActiveSetOptions& settings) {
   const VectorXd warm = initial_multipliers(qp, options, MultiplierSet(qp, VectorXd()));
   SolveResult result;
   const int m = qp.n_constraints();

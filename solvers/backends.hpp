@@ -13,6 +13,10 @@
 
 namespace contactqp::detail {
 
+// How to build a solver of qp.K as `options` ask (kind, ordering, inner tolerance from
+// options.tol, near-null space from qp, the libraries' options).
+LinearSolverOptions linear_solver_options(const QuadraticProgram& qp, const SolveOptions& options);
+
 // The solver of qp.K a backend works with: options.K_factor when the caller supplied one,
 // otherwise a fresh one of the kind options.linear_solver names (inner tolerance from
 // options.tol, near-null space from qp), whose set-up time is recorded in timings as

@@ -29,7 +29,7 @@ using RowMajorMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
 }  // namespace
 
-void zero_separated_multipliers(const QuadraticProgram& qp, SolveResult& result, double tol) {
+void zero_separated_multipliers(const QuadraticProgram& qp, const KTimes& K_times, SolveResult& result, double tol) {
   if (result.status != Status::Converged || result.lambda.size() == 0) return;
   const VectorXd& u = result.u;
   VectorXd& lambda = result.lambda;
@@ -44,7 +44,7 @@ void zero_separated_multipliers(const QuadraticProgram& qp, SolveResult& result,
   // keep: the relative residual it had, or tol, measured by the part of the force scale that the
   // zeros cannot lower (‖f‖∞, ‖Ku‖∞).
   const bool friction = !qp.friction.empty() && result.lambda_t.size() == qp.friction.T.rows();
-  const VectorXd Ku = K_times(qp, u);
+  const VectorXd Ku = K_times(u);
   const VectorXd Btl = qp.B.transpose() * lambda;
   VectorXd r = Ku - qp.f + Btl;
   if (friction) r += qp.friction.T.transpose() * result.lambda_t;
@@ -90,10 +90,10 @@ void zero_separated_multipliers(const QuadraticProgram& qp, SolveResult& result,
   if (zeroed > 0) result.diagnostics["zeroed_multipliers"] = zeroed;
 }
 
-bool overflows(const QuadraticProgram& qp, const SolveResult& result) {
+bool overflows(const QuadraticProgram& qp, const KTimes& K_times, const SolveResult& result) {
   // Finite u and λ can still be too large to certify (a diverged iteration stopped at 1e298):
   // the energy, Bᵀλ and the complementarity products must be finite too.
-  if (!std::isfinite(primal_objective(qp, result.u))) return true;
+  if (!std::isfinite(0.5 * result.u.dot(K_times(result.u)) - qp.f.dot(result.u))) return true;
   if (!VectorXd(qp.B.transpose() * result.lambda).allFinite()) return true;
   if (!qp.friction.empty() && result.lambda_t.size() == qp.friction.T.rows() &&
       (!VectorXd(qp.friction.T.transpose() * result.lambda_t).allFinite() ||

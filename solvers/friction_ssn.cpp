@@ -195,12 +195,18 @@ void Ssn::gradient_steps(int count, VectorXd& y, VectorXd& w) {
 bool Ssn::newton_search(const VectorXd& y_newton, VectorXd& y, VectorXd& w) {
   const double q = objective(y, w);
   const double residual = options_.residual(y, w);
+  // q's round-off near the answer: below it a decrease is not measurable.
+  const double noise = 1e-13 * std::max(std::abs(q), std::abs(0.5 * y.dot(w + p_.h)));
   const VectorXd step = y_newton - y;
   for (double t = 1; t >= 1.0 / 1024; t *= 0.5) {
     const VectorXd trial = project(y + t * step);
     const VectorXd trial_w = gradient(trial);
-    // Near the answer q's decrease is round-off: a full step that lowers the residual counts too.
-    if (objective(trial, trial_w) < q || (t == 1 && options_.residual(trial, trial_w) < residual)) {
+    const double q_trial = objective(trial, trial_w);
+    // Armijo's sufficient decrease along the projected arc (w is q's gradient); within q's
+    // round-off, a full step that lowers the residual.
+    const bool decrease = q_trial <= q + 1e-4 * w.dot(trial - y) && q_trial < q - noise;
+    const bool refines = t == 1 && q_trial <= q + noise && options_.residual(trial, trial_w) < residual;
+    if (decrease || refines) {
       y = trial;
       w = trial_w;
       return true;

@@ -25,6 +25,7 @@
 
 #include "backend_options.hpp"
 #include "contactqp/errors.hpp"
+#include "contactqp/processes.hpp"
 #include "coulomb_fixed_point.hpp"
 #include "ipopt_friction.hpp"
 #include "multiplier_set.hpp"
@@ -334,7 +335,7 @@ SolveResult solve_ipopt_once(const QuadraticProgram& qp, const VectorXd& radii, 
   // Where PETSc is built in, Ipopt's MUMPS calls reach PETSc's MPI MUMPS: MPI must be running.
   // Its start-up, once per process, is timed apart so that Ipopt's own phases stay comparable.
   Stopwatch start_clock;
-  start_petsc_runtime(options.petsc_options);
+  start_process_runtime(options.library_options);
   const double start_seconds = start_clock.seconds();
   SolveResult result;
   if (start_seconds > 1e-3) result.timings.add("petsc_start", start_seconds);

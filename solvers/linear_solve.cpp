@@ -10,7 +10,7 @@ SolveResult solve_without_contact(const QuadraticProgram& qp, const SolveOptions
   validate(qp);
   Stopwatch clock;
   // The same scaled K as solve() hands a backend, so that the factorisation is the same one.
-  const detail::QpScaling scaling = options.scale ? detail::choose_scaling(qp) : detail::QpScaling{};
+  const detail::QpScaling scaling = options.scale ? detail::choose_scaling(qp, qp.K.diagonal()) : detail::QpScaling{};
   const QuadraticProgram scaled = options.scale ? detail::scaled_qp(qp, scaling) : qp;
   const SolveOptions scaled_options = options.scale ? detail::scaled_options(options, scaling) : options;
 

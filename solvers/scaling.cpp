@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "contactqp/linear_solver.hpp"
-#include "contactqp/processes.hpp"
 #include "qp/norms.hpp"
 
 namespace contactqp::detail {
@@ -15,11 +14,8 @@ const char* const kEigenvalueDiagnostics[] = {"lambda_max_S", "lambda_min_S"};
 
 }  // namespace
 
-QpScaling choose_scaling(const QuadraticProgram& qp) {
+QpScaling choose_scaling(const QuadraticProgram& qp, const VectorXd& diagonal) {
   QpScaling scaling;
-  VectorXd diagonal = qp.K.diagonal();
-  // A rank's share holds part of each diagonal entry at its boundary: the ranks' sum is K's.
-  if (qp.K_is_rank_share) sum_over_ranks(diagonal.data(), diagonal.size());
   const double kappa = diagonal.size() ? diagonal.cwiseAbs().maxCoeff() : 0.0;
   if (kappa > 0 && std::isfinite(kappa)) scaling.stiffness = kappa;
   const double from_load = inf_norm(qp.f) / scaling.stiffness;
@@ -39,8 +35,6 @@ QuadraticProgram scaled_qp(const QuadraticProgram& qp, const QpScaling& scaling)
   scaled.g = qp.g / scaling.displacement;
   scaled.rows = qp.rows;
   scaled.near_null_space = qp.near_null_space;  // directions: unchanged by the scaling of K
-  scaled.K_is_rank_share = qp.K_is_rank_share;
-  scaled.distributed_row = qp.distributed_row;
   // T's rows are unit directions like B's; the offset is a length, the threshold a force, μ a ratio.
   scaled.friction = qp.friction;
   scaled.friction.offset = qp.friction.offset / scaling.displacement;

@@ -17,7 +17,8 @@ struct QpScaling {
   double displacement = 1.0;  // s: ‖f‖∞/κ, or ‖g‖∞ when f = 0, or 1
 };
 
-QpScaling choose_scaling(const QuadraticProgram& qp);
+// From K's diagonal (KOperations::diagonal: a problem held in parts sums its parts'), f and g.
+QpScaling choose_scaling(const QuadraticProgram& qp, const VectorXd& K_diagonal);
 QuadraticProgram scaled_qp(const QuadraticProgram& qp, const QpScaling& scaling);
 SolveOptions scaled_options(const SolveOptions& options, const QpScaling& scaling);
 // Maps a result of the scaled QP back to the caller's units (u, λ, λ_T, ρ-type diagnostics, factor).

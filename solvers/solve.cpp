@@ -12,6 +12,7 @@
 #include "contactqp/solve.hpp"
 #include "qp/words.hpp"
 #include "scaling.hpp"
+#include "solve_steps.hpp"
 
 namespace contactqp {
 namespace detail {
@@ -21,10 +22,8 @@ LinearSolverOptions linear_solver_options(const QuadraticProgram& qp, const Solv
   settings.kind = options.linear_solver;
   settings.ordering = options.ordering;
   settings.tol = options.tol;
-  settings.petsc_options = options.petsc_options;
+  settings.library_options = options.library_options;
   settings.near_null_space = qp.near_null_space;
-  settings.rank_share = qp.K_is_rank_share;
-  settings.distributed_row = qp.distributed_row;
   settings.verbose = options.verbose;
   return settings;
 }
@@ -87,8 +86,7 @@ void check_problem_kind(const BackendRegistration& registration, const Quadratic
     std::vector<std::string> others;
     for (Backend other : available_backends(qp)) others.push_back(to_string(other));
     throw InputError("backend", "= \"" + registration.name + "\": does not solve 3D " + to_string(kind) +
-                                    " problems (2D only); backends that do: " +
-                                    join(others));
+                                    " problems (2D only); backends that do: " + join(others));
   }
   if (kind_solved) return;
   std::vector<std::string> solved, others;
@@ -100,7 +98,7 @@ void check_problem_kind(const BackendRegistration& registration, const Quadratic
                        (others.empty() ? "no backend built into this copy does" : "backends that do: " + join(others)));
 }
 
-void validate_options(const SolveOptions& options) {
+void check_solve_options(const SolveOptions& options) {
   require(options.tol > 0 && options.tol < 1, "tol", options.tol, "must lie in (0, 1)");
   require(options.max_iterations > 0, "max_iterations", options.max_iterations, "must be positive");
   const UzawaOptions& uzawa = options.uzawa;
@@ -111,7 +109,7 @@ void validate_options(const SolveOptions& options) {
   const std::shared_ptr<const BackendRegistration> registration = backend_registration(options.backend);
   require(registration->available, "backend", to_string(options.backend), "was not built into this copy of contactqp");
   require(linear_solver_available(options.linear_solver), "linear_solver", to_string(options.linear_solver),
-          "was not built into this copy of contactqp (PETSc absent at configure time)");
+          "was not built into this copy of contactqp (its library was absent at configure time)");
   if (registration->check_options)
     registration->check_options(options);
   else
@@ -119,30 +117,25 @@ void validate_options(const SolveOptions& options) {
 }
 
 }  // namespace
-}  // namespace detail
 
-void validate_options(const SolveOptions& options) { detail::validate_options(options); }
+KOperations whole_K(const QuadraticProgram& qp) {
+  return {[&qp](const VectorXd& u) { return K_times(qp, u); }, [&qp]() { return VectorXd(qp.K.diagonal()); }};
+}
 
-SolveResult solve(const QuadraticProgram& qp, const SolveOptions& options) {
+SolveResult solve_with(const QuadraticProgram& qp, const SolveOptions& options, const KOperations& K,
+                       const BackendSolve& backend_solve) {
   validate(qp);
-  detail::validate_options(options);
-  const std::shared_ptr<const BackendRegistration> registration = backend_registration(options.backend);
-  detail::check_problem_kind(*registration, qp);
-  if (qp.K_is_rank_share && options.backend != Backend::Petsc)
-    throw InputError("backend",
-                     "= " + to_string(options.backend) +
-                         ": K is assembled in shares over the MPI ranks, which only the petsc backend solves");
-  // The shares are summed (scaling, certificate) by MPI, which PETSc starts.
-  if (qp.K_is_rank_share) start_petsc_runtime(options.petsc_options);
+  check_solve_options(options);
+  check_problem_kind(*backend_registration(options.backend), qp);
   Stopwatch clock;
 
   SolveResult result;
   if (options.scale) {
-    const detail::QpScaling scaling = detail::choose_scaling(qp);
-    result = registration->solve(detail::scaled_qp(qp, scaling), detail::scaled_options(options, scaling));
-    detail::unscale_result(result, scaling);
+    const QpScaling scaling = choose_scaling(qp, K.diagonal());
+    result = backend_solve(scaled_qp(qp, scaling), scaled_options(options, scaling));
+    unscale_result(result, scaling);
   } else {
-    result = registration->solve(qp, options);
+    result = backend_solve(qp, options);
   }
 
   // The final guard: no NaN or Inf ever leaves solve(), nor numbers whose energy overflows.
@@ -157,20 +150,32 @@ SolveResult solve(const QuadraticProgram& qp, const SolveOptions& options) {
     result.u = VectorXd::Zero(qp.n_dofs());
     result.lambda = VectorXd::Zero(qp.n_constraints());
     result.lambda_t = VectorXd::Zero(t_rows);
-  } else if (detail::overflows(qp, result)) {
+  } else if (overflows(qp, K.times, result)) {
     if (result.status == Status::Converged) result.status = Status::NumericalError;
     result.message += "; its last iterate overflows (energy beyond double range) and is reported as u = 0, λ = 0";
     result.u = VectorXd::Zero(qp.n_dofs());
     result.lambda = VectorXd::Zero(qp.n_constraints());
     result.lambda_t = VectorXd::Zero(t_rows);
   }
-  detail::zero_separated_multipliers(qp, result, options.tol);
-  detail::report_linear_solver(result);
+  zero_separated_multipliers(qp, K.times, result, options.tol);
+  report_linear_solver(result);
   // A diagnostic that is not finite (ρ_max with no constraints) is absent, not Inf.
   for (auto it = result.diagnostics.begin(); it != result.diagnostics.end();)
     it = std::isfinite(it->second) ? std::next(it) : result.diagnostics.erase(it);
   result.timings.add("total", clock.seconds());
   return result;
+}
+
+}  // namespace detail
+
+void validate_options(const SolveOptions& options) { detail::check_solve_options(options); }
+
+SolveResult solve(const QuadraticProgram& qp, const SolveOptions& options) {
+  // The backend's registration is looked up once the options are valid (its name among them).
+  return detail::solve_with(qp, options, detail::whole_K(qp),
+                            [&options](const QuadraticProgram& q, const SolveOptions& o) {
+                              return backend_registration(options.backend)->solve(q, o);
+                            });
 }
 
 }  // namespace contactqp

@@ -93,8 +93,8 @@ void run_case(const Case& c, bool quick, std::ostringstream& csv) {
     options.K_factor = warm.K_factor ? warm.K_factor : cold.K_factor;
     options.initial = {warm.u, warm.lambda, warm.lambda_t};
     const double difference = relative_difference(warm.u, cold.u);
-    std::cout << "  step " << k + 1 << ": from scratch " << cold_seconds << " s = " << cold_seconds / unit
-              << " units (" << to_string(cold.status) << ", " << cold.iterations << " Newton/gradient steps, "
+    std::cout << "  step " << k + 1 << ": from scratch " << cold_seconds << " s = " << cold_seconds / unit << " units ("
+              << to_string(cold.status) << ", " << cold.iterations << " Newton/gradient steps, "
               << diagnostic(cold, "fixed_point_steps") << " Tresca solves); warm-started " << warm_seconds
               << " s = " << warm_seconds / unit << " units (" << to_string(warm.status) << ", " << warm.iterations
               << " steps, " << diagnostic(warm, "fixed_point_steps") << " Tresca solves); stick/slip/gap nodes "
@@ -104,8 +104,7 @@ void run_case(const Case& c, bool quick, std::ostringstream& csv) {
         << linear_solve << ',' << cold_seconds << ',' << to_string(cold.status) << ',' << cold.iterations << ','
         << diagnostic(cold, "fixed_point_steps") << ',' << warm_seconds << ',' << to_string(warm.status) << ','
         << warm.iterations << ',' << diagnostic(warm, "fixed_point_steps") << ',' << diagnostic(warm, "stick_nodes")
-        << ',' << diagnostic(warm, "slip_nodes") << ',' << diagnostic(warm, "gap_nodes") << ',' << difference
-        << '\n';
+        << ',' << diagnostic(warm, "slip_nodes") << ',' << diagnostic(warm, "gap_nodes") << ',' << difference << '\n';
   }
 }
 
@@ -120,7 +119,8 @@ int main(int argc, char** argv) {
     csv << "scene,dofs,contact_rows,step,factorize_seconds,solve_seconds,cold_seconds,cold_status,cold_iterations,"
            "cold_fixed_point_steps,warm_seconds,warm_status,warm_iterations,warm_fixed_point_steps,stick_nodes,"
            "slip_nodes,gap_nodes,relative_difference_u\n";
-    const std::vector<Case> cases = {{"plane-2d", "plane-2d.json", 0.2, 0.01}, {"sphere-3d", "sphere-3d.json", 0.4, 0.06}};
+    const std::vector<Case> cases = {{"plane-2d", "plane-2d.json", 0.2, 0.01},
+                                     {"sphere-3d", "sphere-3d.json", 0.4, 0.06}};
     for (const Case& c : cases) run_case(c, arguments.quick, csv);
     write_file_atomically(bench::output_path(arguments.out, "steps.csv"), csv.str());
     write_file_atomically(arguments.out + "/context.json",

@@ -39,6 +39,7 @@
 // problem with threshold μλ_N, which a Coulomb solution solves, so its gap is zero too.
 #pragma once
 
+#include <limits>
 #include <string>
 
 #include "contactqp/qp.hpp"
@@ -70,9 +71,34 @@ Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorX
 Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda, const VectorXd& lambda_t,
                     const LinearSolver* K_factor = nullptr);
 
+// What the certificate's formulas read of (qp, u, λ): maxima and sums over the entries. A caller
+// that holds u, λ and the rows of K, f, B and g in pieces (one per process of a distributed
+// problem) takes each maximum and sum over the pieces, and gets from certificate_from() the
+// certificate certify() gives for the whole: one implementation of the formulas for both.
+struct CertificateTerms {
+  double f_max = 0, Ku_max = 0, Btl_max = 0;  // ‖f‖∞, ‖Ku‖∞, ‖Bᵀλ‖∞
+  double u_max = 0, Bu_max = 0;               // ‖u‖∞, ‖Bu‖∞
+  double stationarity_max = 0;                // ‖Ku − f + Bᵀλ‖∞
+  double violation_max = 0;                   // max(0, max_i (Bu − g)_i)
+  double negative_max = 0;                    // max(0, −min_i λ_i)
+  double lambda_max = 0;                      // ‖λ‖∞
+  double complementarity_max = 0;             // max_i |λ_i (Bu − g)_i|
+  double uKu = 0, fu = 0, lambda_slack = 0;   // uᵀKu, fᵀu, λᵀ(Bu − g)
+  // rᵀK⁻¹r for the stationarity residual r (one solve with K); NaN when no solver of K is at
+  // hand or it failed: θ and the gap are then not available.
+  double r_K_inverse_r = std::numeric_limits<double>::quiet_NaN();
+};
+CertificateTerms certificate_terms(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda);
+// The same with K u given: for a problem whose K this process holds only a share of (its
+// library sums the shares' products over the processes).
+CertificateTerms certificate_terms(const QuadraticProgram& qp, const VectorXd& Ku, const VectorXd& u,
+                                   const VectorXd& lambda);
+Certificate certificate_from(const CertificateTerms& terms);
+
 // The scales above, exposed so that backends' stopping rules measure the same things.
 double force_scale(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda,
                    const VectorXd& lambda_t = VectorXd());
+double force_scale(const VectorXd& f, const VectorXd& Ku, const VectorXd& Btl);  // from the products
 double length_scale(const QuadraticProgram& qp, const VectorXd& u);
 
 }  // namespace contactqp

@@ -1,12 +1,15 @@
 // The solver of K: everything a backend needs from the stiffness matrix, behind one interface
 // (ARCHITECTURE.md, "The solver of K is an axis of its own"). A backend asks "solve K x = b";
 // it never names CHOLMOD or PETSc. Implemented by CholeskyFactor (cholesky.hpp: CHOLMOD,
-// direct, one process) and by a PETSc KSP (src/qp/petsc_solver.cpp: iterative, CG + GAMG by
-// default). docs/linear-solvers.md describes the choice, its options and the inner tolerance.
+// direct, one process) and by any solver a library registers for its kind (register_linear_solver:
+// src/petsc/ registers PETSc's KSP, iterative, CG + GAMG by default). docs/linear-solvers.md
+// describes the choice, its options and the inner tolerance.
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -102,29 +105,26 @@ struct LinearSolverOptions {
   // The outer (backend's) relative tolerance: an iterative solver derives its inner stopping
   // rule from it so that the certificate still holds at tol (docs/linear-solvers.md).
   double tol = 1e-8;
-  std::string petsc_options;  // PETSc options database entries, e.g. "-ksp_type minres -pc_type hypre"
   // n × k near-null space of A (rigid-body modes on the free DOFs), for algebraic multigrid;
   // empty when unknown. Not referenced after construction.
   Eigen::MatrixXd near_null_space;
-  // A is this rank's share of the matrix (QuadraticProgram::K_is_rank_share): the matrix to
-  // solve is the sum of the ranks' shares. Only the petsc kind takes one.
-  bool rank_share = false;
-  // The row of each unknown in a distributed matrix (QuadraticProgram::distributed_row), or
-  // empty for their own order. PETSc only.
-  std::vector<int> distributed_row;
+  // Options of the library that solves, in its own syntax, by library name (SolveOptions::
+  // library_options, passed on unchanged).
+  std::map<std::string, std::string> library_options;
   bool verbose = false;  // let the library print its own log
 };
-
-// With PETSc built in, the process holds two MUMPS builds, Ipopt's sequential one and PETSc's
-// MPI one, and the dynamic linker binds every MUMPS call to the first loaded, the MPI build,
-// which aborts unless MPI is running. Starts PETSc (and so MPI) once, with `petsc_options` as
-// its command line if it is the first PETSc use; a no-op without PETSc. Ipopt calls it.
-void start_petsc_runtime(const std::string& petsc_options = "");
 
 // Sets up a solver of A (symmetric positive definite; both triangles stored) of the chosen
 // kind. Never throws on a numerical failure (check ok()); throws InputError when the kind was
 // not built into this copy of contactqp or its options are bad input.
 std::shared_ptr<const LinearSolver> make_linear_solver(const Eigen::SparseMatrix<double>& A,
                                                        const LinearSolverOptions& options);
+
+// How a library that solves with K offers itself for a kind other than CHOLMOD's: its file
+// registers a factory (CONTACTQP_BUILTIN, as backends register), and make_linear_solver() and
+// linear_solver_available() find it. The factory follows make_linear_solver()'s rules.
+using LinearSolverFactory = std::function<std::shared_ptr<const LinearSolver>(const Eigen::SparseMatrix<double>& A,
+                                                                              const LinearSolverOptions& options)>;
+void register_linear_solver(LinearSolverKind kind, LinearSolverFactory factory);
 
 }  // namespace contactqp

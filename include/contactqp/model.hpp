@@ -105,22 +105,12 @@ inline int body_of_element(const Model& model, int e) { return model.element_bod
 // be modelled (element limit, a boundary condition that penetrates an obstacle, ...).
 Model build_model(const Scene& scene, const BuildOptions& options = {});
 
-// Which elements assemble_qp() adds to K: all of them (the default), or under mpirun with the
-// petsc backend this rank's share (qp.hpp's K_is_rank_share): the elements whose first free
-// DOF lies in the rank's block of rows, PETSc's split of the rows into contiguous blocks.
-struct RankShare {
-  int rank = 0;
-  int ranks = 1;
-  // The DOFs' rows to use (a permutation, as QuadraticProgram::distributed_row), or empty to
-  // partition the mesh now. PT-Scotch's partition differs from call to call in one process, so
-  // shares meant to sum to one K must be given the rows the first of them chose.
-  std::vector<int> distributed_row;
-};
-
-// Assembles K (free DOFs; the whole, or a rank's share), f (prescribed displacements moved to
-// the right-hand side) and one row of B and g per candidate, f, B and g whole on every rank.
-// Records "assemble" in model timings.
-QuadraticProgram assemble_qp(Model& model, const RankShare& share = {});
+// Assembles K (free DOFs), f (prescribed displacements moved to the right-hand side, from
+// every element) and one row of B and g per candidate. `elements` holds 1 for each element
+// whose matrix K gets, or is empty for all of them: K is then a part of the problem's K, for
+// a problem held in parts by several processes whose parts of the elements sum to the whole
+// (include/contactqp/petsc/par_qp.hpp). Records "assemble" in model timings.
+QuadraticProgram assemble_qp(Model& model, const std::vector<char>& elements = {});
 
 // Sets the model and its QP to one load step: prescribed and nodal_force become the loads'
 // shares scaled by `factors` (one per entry of model.scene.loads, load_factors()), and qp.f and

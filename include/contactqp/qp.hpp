@@ -41,16 +41,6 @@ struct QuadraticProgram {
   // n × k rigid-body modes on the free DOFs (k = 3 in 2D), for algebraic multigrid in an
   // iterative solver of K; empty when unknown. Filled by assemble_qp; backends never need it.
   Eigen::MatrixXd near_null_space;
-  // Under mpirun with the petsc backend each process assembles only the elements it owns
-  // (assemble_qp's RankShare, docs/petsc.md): K then holds this process's share and the
-  // problem's K is the sum of the shares over the ranks. Only the petsc backend solves such a
-  // QP; K_times(), primal_objective() and certify() sum over the ranks (collective calls).
-  // f, B, g and near_null_space are whole on every rank either way.
-  bool K_is_rank_share = false;
-  // With a rank share: the row of each DOF in the distributed matrix, a permutation that puts
-  // the DOFs of each part of a mesh partition together, so that each rank's block of rows is a
-  // compact piece of the body. Empty: the DOFs' own order.
-  std::vector<int> distributed_row;
   // Friction at the contact rows (friction.hpp): empty (law None) for a frictionless problem.
   FrictionBlock friction;
 
@@ -63,10 +53,10 @@ struct QuadraticProgram {
 // K, or a threshold or coefficient is negative (friction.hpp). Cheap: O(nnz).
 void validate(const QuadraticProgram& qp);
 
-// K u, summed over the ranks when K is a rank share (then collective).
+// K u.
 VectorXd K_times(const QuadraticProgram& qp, const VectorXd& u);
 
-// J(u) = ½ uᵀKu − fᵀu (collective when K is a rank share).
+// J(u) = ½ uᵀKu − fᵀu.
 double primal_objective(const QuadraticProgram& qp, const VectorXd& u);
 
 // What kind of problem the QP is, from its friction block: a backend solves only the kinds
@@ -181,9 +171,10 @@ struct SolveOptions {
   // is fast with CHOLMOD and takes one solve per contact row with another solver.
   LinearSolverKind linear_solver = LinearSolverKind::Cholmod;
   Ordering ordering = Ordering::Amd;  // fill-reducing ordering of K's factorisation (CHOLMOD)
-  // PETSc options database entries for linear_solver = petsc, passed through unchanged
-  // ("-ksp_type minres -pc_type hypre"); the PETSC_OPTIONS environment variable is read too.
-  std::string petsc_options;
+  // Options of a library underneath, in the library's own syntax, by the library's name: passed
+  // through unchanged to the part of contactqp that uses that library (docs/petsc.md: "petsc"
+  // holds PETSc's options database entries, from --petsc-options or solver.petsc_options).
+  std::map<std::string, std::string> library_options;
   // Backend options as text: Ipopt's own options for ipopt, "algorithm"/"memory" for nlopt.
   // A key "ipopt.print_level" is read only by that backend, so one map can serve several.
   std::map<std::string, std::string> backend_options;  // --backend-option key=value, passed through

@@ -1,7 +1,7 @@
 // The contactqp Python module (docs/python.md): pybind11 over the C++ library, for Debian's
 // /usr/bin/python3. scipy.sparse and numpy in, numpy out; bad input raises InputError.
 #include "bindings.hpp"
-#include "contactqp/linear_solver.hpp"
+#include "contactqp/processes.hpp"
 
 #ifndef CONTACTQP_VERSION
 #error "CONTACTQP_VERSION is set by python/CMakeLists.txt from the project version"
@@ -26,8 +26,8 @@ Bad input raises contactqp.InputError (a ValueError) naming the field.)";
   m.attr("__version__") = CONTACTQP_VERSION;
   // Another module of the same process may call MUMPS (GetFEM does, Ipopt's backend does): with
   // PETSc built in, those calls bind to PETSc's MPI build of MUMPS, which aborts the process
-  // unless MPI is running. Start it now, once; a no-op without PETSc.
-  contactqp::start_petsc_runtime();
+  // unless MPI is running. Start it now, once (processes.hpp); a no-op without PETSc.
+  contactqp::start_process_runtime();
   contactqp::python::bind_errors(m);
   contactqp::python::bind_qp(m);
   contactqp::python::bind_pairs(m);

@@ -34,7 +34,7 @@ void apply_overrides(const SolveArguments& arguments, SolveOptions& options) {
       throw InputError("--petsc-options",
                        "= \"" + arguments.petsc_options +
                            "\": is a contactqp option, not PETSc's; write --petsc-options=\"-ksp_type cg\"");
-    options.petsc_options = arguments.petsc_options;
+    options.library_options["petsc"] = arguments.petsc_options;  // the PETSc room reads it (docs/petsc.md)
   }
   add_backend_options(arguments.backend_options, options);
 }
@@ -143,7 +143,7 @@ void add_linear_solver_options(CLI::App& command, SolveArguments& arguments) {
   command
       .add_option("--petsc-options", arguments.petsc_options,
                   "PETSc options database entries, passed through unchanged, e.g. --petsc-options=\"-ksp_type minres\" "
-                  "(PETSC_OPTIONS is read too)")
+                  "(over the scene's solver.petsc_options; PETSC_OPTIONS is read too)")
       ->each([&arguments](const std::string&) { arguments.petsc_options_given = true; });
 }
 

@@ -7,7 +7,6 @@
 #include "contactqp/errors.hpp"
 #include "contactqp/model.hpp"
 #include "model/rigid_body_modes.hpp"
-#include "rank_share.hpp"
 #include "stiffness_matrix.hpp"
 
 namespace contactqp {
@@ -74,23 +73,16 @@ Eigen::MatrixXd dof_frame_rotated(const Model& model, const int* v, int npe, Eig
 }
 }  // namespace detail
 
-QuadraticProgram assemble_qp(Model& model, const RankShare& share) {
+QuadraticProgram assemble_qp(Model& model, const std::vector<char>& elements) {
   Stopwatch clock;
+  const Mesh& mesh = model.mesh;
+  if (!elements.empty() && static_cast<int>(elements.size()) != mesh.n_elements())
+    throw InputError("elements", "has " + std::to_string(elements.size()) + " entries for " +
+                                     std::to_string(mesh.n_elements()) + " elements");
+
   QuadraticProgram qp;
   qp.f = Eigen::VectorXd::Zero(model.n_free);
-  if (share.ranks > 1) {
-    qp.K_is_rank_share = true;
-    qp.distributed_row =
-        share.distributed_row.empty() ? detail::distributed_rows(model, share.ranks) : share.distributed_row;
-    if (!share.distributed_row.empty() && static_cast<int>(share.distributed_row.size()) != model.n_free)
-      throw InputError("RankShare.distributed_row", "has " + std::to_string(share.distributed_row.size()) +
-                                                        " entries for " + std::to_string(model.n_free) + " DOFs");
-    if (qp.distributed_row.empty())
-      model.warnings.push_back(
-          "the mesh could not be partitioned between the MPI ranks (PETSc's MatPartitioning "
-          "failed): each rank assembles the elements of a block of DOFs in their own order");
-  }
-  detail::assemble_stiffness(model, share, qp.distributed_row, qp.K, qp.f);
+  detail::assemble_stiffness(model, elements, qp.K, qp.f);
   add_force_loads(model, qp.f);
   refuse_unrepresentable(model, qp);
   detail::add_contact_rows(model, qp);

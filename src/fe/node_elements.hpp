@@ -1,6 +1,6 @@
 // The elements at each node of a mesh, and each node's neighbours (the nodes it shares an
 // element with): K's pattern (stiffness_matrix.cpp) and the graph the ranks' partition splits
-// (rank_share.cpp) both come from them.
+// (src/petsc/rank_share.cpp) both come from them.
 #pragma once
 
 #include <vector>

@@ -12,7 +12,6 @@
 
 #include "contactqp/mesh.hpp"
 #include "node_elements.hpp"
-#include "rank_share.hpp"
 
 namespace contactqp::detail {
 
@@ -87,15 +86,15 @@ void build_pattern(const Model& model, const std::vector<char>& owned, Eigen::Sp
 
 }  // namespace
 
-void assemble_stiffness(const Model& model, const RankShare& share, const std::vector<int>& distributed_row,
-                        Eigen::SparseMatrix<double>& K, Eigen::VectorXd& f) {
+void assemble_stiffness(const Model& model, const std::vector<char>& elements, Eigen::SparseMatrix<double>& K,
+                        Eigen::VectorXd& f) {
   const Mesh& mesh = model.mesh;
   const std::vector<ElementLaw> laws = element_laws(model);  // one per body
   const double thickness = model.scene.body.thickness;
   const int npe = mesh.nodes_per_element(), dim = mesh.dim, n = dim * npe;
   const ElementType type = mesh.type();
   const int n_elements = mesh.n_elements();
-  const std::vector<char> owned = owned_elements(model, share, distributed_row);
+  const std::vector<char> owned = elements.empty() ? std::vector<char>(n_elements, 1) : elements;
   build_pattern(model, owned, K);
   const int* outer = K.outerIndexPtr();
   const int* inner = K.innerIndexPtr();
@@ -112,8 +111,8 @@ void assemble_stiffness(const Model& model, const RankShare& share, const std::v
     for (int i = 0; i < npe; ++i)
       for (int c = 0; c < dim; ++c) dofs[dim * i + c] = dim * v[i] + c;
   };
-  // Every rank moves every element's prescribed displacements to f (f is whole on every rank):
-  // an element that is not this rank's still needs its matrix when it has a nonzero one.
+  // f takes every element's prescribed displacements (f is whole in every part of K): an element
+  // K does not take still needs its matrix when it has a nonzero one.
   std::vector<char> moves_prescribed(n_elements, 0);
   for (int e = 0; e < n_elements; ++e) {
     if (owned[e]) continue;

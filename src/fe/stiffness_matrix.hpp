@@ -9,11 +9,10 @@
 
 namespace contactqp::detail {
 
-// K over the free DOFs (in the DOF frames), the whole or this rank's share of it
-// (model.hpp's RankShare; rank_share.hpp, with the DOFs' rows `distributed_row`, empty for
-// their own order), and f −= K_free,prescribed · u_prescribed, whole on every rank.
-void assemble_stiffness(const Model& model, const RankShare& share, const std::vector<int>& distributed_row,
-                        Eigen::SparseMatrix<double>& K, Eigen::VectorXd& f);
+// K over the free DOFs (in the DOF frames) from the elements marked in `elements` (empty: all;
+// model.hpp's assemble_qp), and f −= K_free,prescribed · u_prescribed from every element.
+void assemble_stiffness(const Model& model, const std::vector<char>& elements, Eigen::SparseMatrix<double>& K,
+                        Eigen::VectorXd& f);
 
 // −K_free,prescribed · u_prescribed over the free DOFs, for the model's prescribed values: the
 // prescribed displacements' share of f on its own, for a load step (apply_load_step). Only the

@@ -1,13 +1,15 @@
 // The parts of the LinearSolver interface that do not depend on a library: the generic
-// multi-column solve and condensation, and the factory (the name tables: linear_solver_names.cpp).
+// multi-column solve and condensation, and the factory with the solvers libraries register
+// (the name tables: linear_solver_names.cpp).
 #include "contactqp/linear_solver.hpp"
 
 #include <algorithm>
+#include <mutex>
 #include <utility>
 
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"
-#include "petsc_solver.hpp"
+#include "qp/builtins.hpp"
 
 namespace contactqp {
 namespace {
@@ -16,16 +18,35 @@ namespace {
 // call, few enough that the dense block (n × kCondenseBlock) stays small next to K.
 constexpr int kCondenseBlock = 32;
 
+// The factories libraries registered, by kind (CHOLMOD's is built in).
+struct Factories {
+  std::mutex mutex;
+  std::map<LinearSolverKind, LinearSolverFactory> by_kind;
+};
+
+Factories& factories() {
+  static Factories registered;
+  return registered;
+}
+
+LinearSolverFactory registered_factory(LinearSolverKind kind) {
+  detail::register_builtins();
+  Factories& all = factories();
+  std::lock_guard<std::mutex> lock(all.mutex);
+  const auto found = all.by_kind.find(kind);
+  return found == all.by_kind.end() ? LinearSolverFactory() : found->second;
+}
+
 }  // namespace
 
+void register_linear_solver(LinearSolverKind kind, LinearSolverFactory factory) {
+  Factories& all = factories();
+  std::lock_guard<std::mutex> lock(all.mutex);
+  all.by_kind[kind] = std::move(factory);
+}
+
 bool linear_solver_available(LinearSolverKind kind) {
-  switch (kind) {
-    case LinearSolverKind::Cholmod:
-      return true;
-    case LinearSolverKind::Petsc:
-      return detail::petsc_available();
-  }
-  return false;
+  return kind == LinearSolverKind::Cholmod || static_cast<bool>(registered_factory(kind));
 }
 
 Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b, const Eigen::VectorXd&) const { return solve(b); }
@@ -56,22 +77,15 @@ Condensation LinearSolver::condense(const Eigen::SparseMatrix<double>& C, const 
   return out;
 }
 
-void start_petsc_runtime(const std::string& petsc_options) { detail::start_petsc_runtime(petsc_options); }
-
 std::shared_ptr<const LinearSolver> make_linear_solver(const Eigen::SparseMatrix<double>& A,
                                                        const LinearSolverOptions& options) {
-  switch (options.kind) {
-    case LinearSolverKind::Cholmod:
-      require(!options.rank_share, "linear_solver", to_string(options.kind),
-              "cannot factorise a matrix assembled in shares over the MPI ranks (use petsc)");
-      return std::make_shared<const CholeskyFactor>(A, options.ordering);
-    case LinearSolverKind::Petsc:
-      require(detail::petsc_available(), "linear_solver", to_string(options.kind),
-              "PETSc was not built into this copy of contactqp (install petsc-dev and reconfigure with "
-              "-DCONTACTQP_WITH_PETSC=ON)");
-      return detail::make_petsc_solver(A, options);
-  }
-  throw InputError("linear_solver", "= " + std::to_string(static_cast<int>(options.kind)) + ": not a linear solver");
+  if (options.kind == LinearSolverKind::Cholmod) return std::make_shared<const CholeskyFactor>(A, options.ordering);
+  const LinearSolverFactory factory = registered_factory(options.kind);
+  if (!factory)
+    throw InputError("linear_solver", "= " + to_string(options.kind) +
+                                          ": was not built into this copy of contactqp (its library was absent at "
+                                          "configure time; docs/install.md)");
+  return factory(A, options);
 }
 
 }  // namespace contactqp

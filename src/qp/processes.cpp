@@ -1,15 +1,33 @@
-// process_rank(), process_count() and agree_on_exit() (processes.hpp): the launcher's
-// environment before MPI starts, MPI itself (through petsc_solver.hpp) once it runs.
+// process_rank(), process_count(), start_process_runtime() and agree_on_exit() (processes.hpp):
+// the launcher's environment, or the runtime a library registered once it runs.
 #include "contactqp/processes.hpp"
 
 #include <cstdlib>
 #include <iostream>
+#include <mutex>
 #include <string>
 
-#include "petsc_solver.hpp"
+#include "qp/builtins.hpp"
 
 namespace contactqp {
 namespace {
+
+struct Registered {
+  std::mutex mutex;
+  ProcessRuntime runtime;
+};
+
+Registered& registered() {
+  static Registered one;
+  return one;
+}
+
+ProcessRuntime runtime() {
+  detail::register_builtins();
+  Registered& r = registered();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  return r.runtime;
+}
 
 // The launcher's value of one of `names` (OpenMPI, PMIx, MPICH's PMI), or -1.
 int launcher_value(std::initializer_list<const char*> names) {
@@ -22,30 +40,42 @@ int launcher_value(std::initializer_list<const char*> names) {
   return -1;
 }
 
+// The number of processes the registered runtime runs on, 0 when it does not run.
+int running_count(const ProcessRuntime& r) { return r.count ? r.count() : 0; }
+
 }  // namespace
 
+void register_process_runtime(ProcessRuntime runtime) {
+  Registered& r = registered();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  r.runtime = std::move(runtime);
+}
+
 int process_rank() {
-  const int rank = detail::mpi_rank();
+  const ProcessRuntime r = runtime();
+  const int rank = r.rank ? r.rank() : -1;
   if (rank >= 0) return rank;
   const int launched = launcher_value({"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"});
   return launched >= 0 ? launched : 0;
 }
 
 int process_count() {
-  const int size = detail::mpi_size();
+  const int size = running_count(runtime());
   if (size >= 1) return size;
   const int launched = launcher_value({"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"});
   return launched >= 1 ? launched : 1;
 }
 
-void sum_over_ranks(double* values, long n) {
-  if (detail::mpi_size() > 1) detail::mpi_sum(values, n);
+void start_process_runtime(const std::map<std::string, std::string>& library_options) {
+  const ProcessRuntime r = runtime();
+  if (r.start) r.start(library_options);
 }
 
 int agree_on_exit(int status, const std::string& error_line, double timeout_seconds) {
-  if (detail::mpi_size() > 1) return detail::mpi_agree_on_exit(status, error_line, timeout_seconds);
-  // No MPI between the processes (a failure before PETSc started, the same on every rank):
-  // each decides alone, and only rank 0 speaks.
+  const ProcessRuntime r = runtime();
+  if (running_count(r) > 1) return r.agree_on_exit(status, error_line, timeout_seconds);
+  // No runtime between the processes (a failure before it started, the same on every
+  // process): each decides alone, and only process 0 speaks.
   if (!error_line.empty() && process_rank() == 0) std::cerr << error_line << "\n";
   return status;
 }

@@ -3,10 +3,9 @@
 
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
-#include "contactqp/linear_solver.hpp"
-#include "contactqp/processes.hpp"
 #include "contactqp/run.hpp"
 #include "contactqp/solve.hpp"
+#include "run/problem_in_parts.hpp"
 
 namespace contactqp {
 
@@ -20,15 +19,19 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   phase("mesh");
   auto model = std::make_shared<Model>(build_model(scene, options.build));
   phase("assemble");
-  // Under mpirun the petsc backend takes K in shares: each rank assembles its own elements
-  // (docs/petsc.md), so no rank holds the whole K. Every other solve needs K whole.
-  RankShare share;
-  if (scene.solver.backend == Backend::Petsc && !options.no_contact && process_count() > 1) {
-    start_petsc_runtime(scene.solver.petsc_options);  // MPI, with the user's options on PETSc's command line
-    share.rank = process_rank();
-    share.ranks = process_count();
-  }
-  auto qp = std::make_shared<QuadraticProgram>(assemble_qp(*model, share));
+  // On several processes a backend that solves a problem held in parts takes it so (the petsc
+  // backend under mpirun, docs/petsc.md): no process then holds the whole K. Every other solve
+  // needs K whole.
+  const std::shared_ptr<detail::ProblemInParts> in_parts =
+      options.no_contact ? nullptr : detail::assemble_in_parts(*model, scene.solver);
+  if (in_parts && !scene.steps.empty())
+    throw InputError("steps", "are not solved on a problem held in parts (the " + to_string(scene.solver.backend) +
+                                  " backend on several processes): run the scene on one");
+  // The whole QP, which load steps change step by step (loads, gaps, friction offset).
+  const std::shared_ptr<QuadraticProgram> whole =
+      in_parts ? nullptr : std::make_shared<QuadraticProgram>(assemble_qp(*model));
+  const std::shared_ptr<const QuadraticProgram> qp =
+      in_parts ? std::shared_ptr<const QuadraticProgram>(in_parts, &in_parts->part()) : whole;
 
   RunReport report;
   report.model = model;
@@ -39,17 +42,18 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   phase("solve");
   if (options.no_contact)
     report.result = solve_without_contact(*qp, scene.solver);
+  else if (in_parts)
+    report.result = in_parts->solve(scene.solver);
   else if (scene.steps.empty())
     report.result = solve(*qp, scene.solver);
   else
-    report.result = solve_load_steps(*model, *qp, scene, report.options, &report.steps);
+    report.result = solve_load_steps(*model, *whole, scene, report.options, &report.steps);
 
   phase("certify");
   Stopwatch clock;
-  report.certificate =
-      qp->friction.empty()
-          ? certify(*qp, report.result.u, report.result.lambda, report.result.K_factor.get())
-          : certify(*qp, report.result.u, report.result.lambda, report.result.lambda_t, report.result.K_factor.get());
+  report.certificate = in_parts ? in_parts->certify(report.result.u, report.result.lambda, report.result.K_factor.get())
+                                : certify(*qp, report.result.u, report.result.lambda, report.result.lambda_t,
+                                          report.result.K_factor.get());
   report.timings.merge(model->timings);
   report.timings.merge(report.result.timings);
   report.timings.add("certify", clock.seconds());

@@ -125,6 +125,9 @@ void read_solver(JsonObject solver, SolveOptions& options) {
     options.backend = parse_backend(*backend, solver.path_of("backend"));
   if (auto linear_solver = solver.optional_string("linear_solver"))
     options.linear_solver = parse_linear_solver(*linear_solver, solver.path_of("linear_solver"));
+  // PETSc's options database entries, as --petsc-options gives them: kept by library name for
+  // whichever part of contactqp uses PETSc (docs/petsc.md).
+  if (auto petsc_options = solver.optional_string("petsc_options")) options.library_options["petsc"] = *petsc_options;
   if (auto tol = solver.optional_number("tol")) {
     options.tol = *tol;
     require(*tol > 0 && *tol < 1, solver.path_of("tol"), *tol, "must lie in (0, 1)");

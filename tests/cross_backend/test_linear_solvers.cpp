@@ -10,6 +10,7 @@
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/model.hpp"
+#include "contactqp/petsc/par_qp.hpp"
 #include "contactqp/solve.hpp"
 #include "test_support.hpp"
 
@@ -32,7 +33,7 @@ std::vector<LinearSolverKind> available_linear_solvers() {
 SolveOptions options_with(Backend backend, LinearSolverKind kind, double tol, const std::string& petsc_options = "") {
   SolveOptions options = options_for(backend, tol);
   options.linear_solver = kind;
-  options.petsc_options = petsc_options;
+  set_petsc_options(options, petsc_options);
   return options;
 }
 

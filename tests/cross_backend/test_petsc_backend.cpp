@@ -12,6 +12,7 @@
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/model.hpp"
+#include "contactqp/petsc/par_qp.hpp"
 #include "contactqp/processes.hpp"
 #include "contactqp/solve.hpp"
 #include "test_support.hpp"
@@ -33,7 +34,7 @@ QuadraticProgram scene_qp(const std::string& relative, const std::string& patch 
 
 SolveOptions petsc_options(double tol, const std::string& petsc = "", const std::string& method = "") {
   SolveOptions options = options_for(Backend::Petsc, tol);
-  options.petsc_options = petsc;
+  set_petsc_options(options, petsc);
   if (!method.empty()) options.backend_options["method"] = method;
   return options;
 }
@@ -151,10 +152,12 @@ TEST_CASE("K in rank shares: the shares of two ranks sum to the whole K, f stays
     INFO(scene);
     Model model = build_model(load_scene(source_path(scene)));
     const QuadraticProgram whole = assemble_qp(model);
-    const QuadraticProgram first = assemble_qp(model, RankShare{0, 2, {}});
-    const QuadraticProgram second = assemble_qp(model, RankShare{1, 2, first.distributed_row});
-    CHECK_FALSE(whole.K_is_rank_share);
-    CHECK(first.K_is_rank_share);
+    const ParQuadraticProgram first_rank = assemble_par_qp(model, RankShare{0, 2, {}});
+    const ParQuadraticProgram second_rank = assemble_par_qp(model, RankShare{1, 2, first_rank.distributed_row});
+    CHECK(first_rank.ranks == 2);
+    CHECK(second_rank.rank == 1);
+    const QuadraticProgram& first = first_rank.share;
+    const QuadraticProgram& second = second_rank.share;
     const SparseMatrix sum = first.K + second.K;
     const double scale = whole.K.coeffs().cwiseAbs().maxCoeff();
     CHECK(SparseMatrix(sum - whole.K).coeffs().cwiseAbs().maxCoeff() <= 1e-14 * scale);
@@ -163,7 +166,7 @@ TEST_CASE("K in rank shares: the shares of two ranks sum to the whole K, f stays
     // Each share holds about half of K: the partition keeps the boundary between them small.
     CHECK(first.K.nonZeros() <= 0.6 * whole.K.nonZeros());
     CHECK(second.K.nonZeros() <= 0.6 * whole.K.nonZeros());
-    std::vector<int> rows = first.distributed_row;
+    std::vector<int> rows = first_rank.distributed_row;
     REQUIRE(static_cast<int>(rows.size()) == whole.n_dofs());
     std::sort(rows.begin(), rows.end());
     for (int i = 0; i < whole.n_dofs(); ++i) REQUIRE(rows[i] == i);

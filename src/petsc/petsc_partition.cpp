@@ -1,13 +1,12 @@
-// partition_graph() (processes.hpp): PETSc's MatPartitioning, PT-Scotch by default (Debian's
-// PETSc is built with it; ParMETIS is not in Debian's main archive).
+// partition_graph() (contactqp/petsc/par_qp.hpp): PETSc's MatPartitioning, PT-Scotch by default
+// (Debian's PETSc is built with it; ParMETIS is not in Debian's main archive).
 #include <petscmat.h>
 
 #include <algorithm>
 #include <mutex>
 
-#include "contactqp/processes.hpp"
+#include "contactqp/petsc/par_qp.hpp"
 #include "petsc_runtime.hpp"
-#include "petsc_solver.hpp"
 
 namespace contactqp {
 namespace {
@@ -28,8 +27,8 @@ std::vector<int> partition_graph(const std::vector<long>& offsets, const std::ve
   const int n = static_cast<int>(offsets.size()) - 1;
   std::vector<int> part(std::max(n, 0), 0);
   if (parts <= 1 || n <= 0) return part;
-  detail::start_petsc_runtime(petsc_options);
   std::lock_guard<std::mutex> lock(detail::petsc_mutex());
+  detail::PetscRuntime::instance(petsc_options);
   Mat adjacency = nullptr;
   MatPartitioning partitioning = nullptr;
   IS mine = nullptr, all = nullptr;

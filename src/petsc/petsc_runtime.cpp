@@ -1,4 +1,5 @@
-// The PETSc runtime's free functions (petsc_runtime.hpp).
+// The PETSc runtime's free functions (petsc_runtime.hpp), MPI as PETSc started it (mpi.hpp),
+// and the runtime of several processes the generic code asks (processes.hpp: registered at the end).
 #include "petsc_runtime.hpp"
 
 #include <algorithm>
@@ -9,7 +10,9 @@
 #include <iostream>
 #include <thread>
 
-#include "petsc_solver.hpp"
+#include "contactqp/processes.hpp"
+#include "mpi.hpp"
+#include "qp/builtins.hpp"
 
 namespace contactqp::detail {
 
@@ -66,7 +69,8 @@ int mpi_size() {
   return size;
 }
 
-void mpi_sum(double* values, long n) {
+void sum_over_ranks(double* values, long n) {
+  if (mpi_size() <= 1) return;
   // In pieces, since MPI counts are int.
   constexpr long kPiece = 1L << 28;
   for (long start = 0; start < n; start += kPiece)
@@ -97,3 +101,17 @@ int mpi_agree_on_exit(int status, const std::string& error_line, double timeout_
 }
 
 }  // namespace contactqp::detail
+
+// Which process this is and how the processes end together, once PETSc has started MPI; and
+// how to start it, with the user's PETSc options on PETSc's command line.
+CONTACTQP_BUILTIN(mpi_processes) {
+  ProcessRuntime mpi;
+  mpi.rank = mpi_rank;
+  mpi.count = mpi_size;
+  mpi.start = [](const std::map<std::string, std::string>& library_options) {
+    std::lock_guard<std::mutex> lock(petsc_mutex());
+    PetscRuntime::instance(petsc_options_of(library_options));
+  };
+  mpi.agree_on_exit = mpi_agree_on_exit;
+  register_process_runtime(mpi);
+}

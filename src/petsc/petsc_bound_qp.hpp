@@ -1,6 +1,6 @@
-// A bound-constrained QP solved by PETSc on the distributed matrix, seen from the rest of
-// contactqp: no PETSc header here. The petsc backend (solvers/petsc.cpp) brings the contact QP
-// to this form; petsc_bound_qp.cpp solves it (petsc_unavailable.cpp when PETSc is absent).
+// A bound-constrained QP solved by PETSc on the distributed matrix, seen from the rest of the
+// room: no PETSc header here. The petsc backend (petsc_backend.cpp) brings the contact QP to
+// this form; petsc_bound_qp.cpp solves it (without_petsc.cpp refuses it when PETSc is absent).
 //
 //     minimise  ½ vᵀ A v − bᵀ v     subject to   v_i ≤ upper_i  for i in bounded
 //
@@ -23,8 +23,8 @@ struct BoundQp {
   std::vector<int> bounded;          // the components with an upper bound, increasing
   Eigen::VectorXd upper;             // one bound per entry of `bounded`
   Eigen::MatrixXd near_null_space;   // n × k (rigid-body modes in these variables), or empty
-  bool A_is_rank_share = false;      // A is this rank's share: the ranks' shares sum to A (qp.hpp)
-  std::vector<int> distributed_row;  // the row of each variable in PETSc's matrix, or empty (qp.hpp)
+  bool A_is_rank_share = false;      // A is this rank's share: the ranks' shares sum to A (par_qp.hpp)
+  std::vector<int> distributed_row;  // the row of each variable in PETSc's matrix, or empty (par_qp.hpp)
 };
 
 struct BoundQpOptions {
@@ -71,7 +71,6 @@ struct BoundQpResult {
   std::vector<std::string> warnings;
 };
 
-bool petsc_bound_qp_available();
 // Never throws on a numerical failure (status and message say it); InputError for bad PETSc
 // options or an unknown method. Collective: every rank calls it with the same problem (or its
 // share of A). Takes the problem by value and frees its Eigen A once PETSc holds the matrix:

@@ -1,15 +1,17 @@
 // PETSc behind the LinearSolver interface: K copied into a PETSc AIJ matrix (MPIAIJ), solved by
 // a KSP — CG preconditioned by GAMG with the rigid-body near-null space, unless the options
-// database says otherwise. Only this file includes PETSc headers. docs/linear-solvers.md has
-// the user's view: options, the inner tolerance rule, what is measured.
+// database says otherwise; registered as the solver of LinearSolverKind::Petsc (at the end).
+// docs/linear-solvers.md has the user's view: options, the inner tolerance rule, what is measured.
 //
 // The process-wide part (PetscRuntime): PetscInitialize once, on first use, which starts MPI
 // when nobody did; PetscFinalize at exit (std::atexit), so that every way out of main(),
 // exit status 2 included, ends PETSc and MPI in order.
 #include "petsc_solver.hpp"
 
+#include "mpi.hpp"
 #include "petsc_matrix.hpp"
 #include "petsc_runtime.hpp"
+#include "qp/builtins.hpp"
 
 #include <petscksp.h>
 
@@ -131,13 +133,14 @@ struct PetscSolver::Impl {
     return 0;
   }
 
-  bool set_up(const Eigen::SparseMatrix<double>& K, const LinearSolverOptions& options);
+  bool set_up(const Eigen::SparseMatrix<double>& K, const LinearSolverOptions& options, const MatrixLayout& layout);
 };
 
-bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const LinearSolverOptions& settings) {
+bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const LinearSolverOptions& settings,
+                               const MatrixLayout& layout) {
   PetscErrorCode code = 0;
   // Rows are distributed by PETSc (PETSC_DECIDE); each rank sets the rows it owns from its copy
-  // of K, or adds its share of K (settings.rank_share) wherever it lands.
+  // of K, or adds its share of K (layout.share) wherever it lands.
   if ((code = owned_rows(n, &first_row, &end_row))) return fail("PetscSplitOwnership", code);
   const PetscInt local_rows = end_row - first_row;
   if ((code = MatCreate(PETSC_COMM_WORLD, &A))) return fail("MatCreate", code);
@@ -145,8 +148,8 @@ bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const Linea
   if ((code = MatSetType(A, MATMPIAIJ))) return fail("MatSetType", code);
   if ((code = MatSetFromOptions(A))) return bad_options("MatSetFromOptions", code);
   const char* step = "";
-  order = RowOrder(settings.distributed_row);
-  if ((code = fill_matrix(A, K, settings.rank_share, order, first_row, end_row, &step))) return fail(step, code);
+  order = RowOrder(layout.distributed_row);
+  if ((code = fill_matrix(A, K, layout.share, order, first_row, end_row, &step))) return fail(step, code);
   MatNorm(A, NORM_INFINITY, &A_norm);
   MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE);
   MatSetOption(A, MAT_SPD, PETSC_TRUE);
@@ -311,37 +314,39 @@ Eigen::VectorXd PetscSolver::solve(const Eigen::VectorXd& rhs, const Eigen::Vect
 
 }  // namespace
 
-bool petsc_available() { return true; }
-
-void start_petsc_runtime(const std::string& options) {
-  std::lock_guard<std::mutex> lock(petsc_mutex());
-  PetscRuntime::instance(options);
-}
-
 std::shared_ptr<const LinearSolver> make_petsc_solver(const Eigen::SparseMatrix<double>& K,
-                                                      const LinearSolverOptions& options) {
+                                                      const LinearSolverOptions& options, const MatrixLayout& layout) {
   auto impl = std::make_shared<PetscSolver::Impl>();
+  const std::string petsc_options = petsc_options_of(options.library_options);
   {
     std::lock_guard<std::mutex> lock(petsc_mutex());
-    PetscRuntime& runtime = PetscRuntime::instance(options.petsc_options);
-    runtime.use_options(options.petsc_options);
+    PetscRuntime& runtime = PetscRuntime::instance(petsc_options);
+    runtime.use_options(petsc_options);
     impl->generation = runtime.generation();
     impl->n = static_cast<int>(K.rows());
     impl->tol = options.tol;
-    impl->options = options.petsc_options;
+    impl->options = petsc_options;
     Stopwatch clock;
     if (K.rows() != K.cols()) {
       impl->message = "matrix is not square";
     } else {
       Eigen::SparseMatrix<double> compressed = K;
       compressed.makeCompressed();
-      impl->set_up(compressed, options);
+      impl->set_up(compressed, options, layout);
     }
     impl->setup_seconds = clock.seconds();
   }
   // Thrown without the lock: unwinding destroys impl, whose destructor takes it.
-  if (impl->options_error) throw InputError("petsc_options", "= \"" + options.petsc_options + "\": " + impl->message);
+  if (impl->options_error) throw InputError("petsc_options", "= \"" + petsc_options + "\": " + impl->message);
   return std::make_shared<PetscSolver>(impl, 1.0);
 }
 
 }  // namespace contactqp::detail
+
+// --linear-solver petsc: make_linear_solver() finds this factory (linear_solver.hpp).
+CONTACTQP_BUILTIN(petsc_solver) {
+  register_linear_solver(LinearSolverKind::Petsc,
+                         [](const Eigen::SparseMatrix<double>& A, const LinearSolverOptions& options) {
+                           return make_petsc_solver(A, options);
+                         });
+}

@@ -461,8 +461,6 @@ void solve_tao(Work& work, const BoundQp& problem, const BoundQpOptions& options
 
 }  // namespace
 
-bool petsc_bound_qp_available() { return true; }
-
 BoundQpResult solve_bound_qp_petsc(BoundQp problem, const BoundQpOptions& options) {
   if (options.method != "pdas" && options.method != "tao")
     throw InputError("method", "= \"" + options.method + "\": not a method of the petsc backend; valid: pdas, tao");

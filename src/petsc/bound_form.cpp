@@ -15,7 +15,7 @@ int find(std::vector<int>& parent, int i) {
 
 }  // namespace
 
-bool make_bound_form(const QuadraticProgram& qp, BoundForm& form, std::string& message) {
+bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, BoundForm& form, std::string& message) {
   const int n = qp.n_dofs(), m = qp.n_constraints();
   // Rows that share a column belong to one group (union-find over B's columns).
   std::vector<int> parent(m);
@@ -96,8 +96,8 @@ bool make_bound_form(const QuadraticProgram& qp, BoundForm& form, std::string& m
   const SparseMatrix A = QT * qp.K * form.Q;
   problem.A = 0.5 * (A + SparseMatrix(A.transpose()));  // exactly symmetric, for CG and MAT_SYMMETRIC
   problem.A.prune(0.0);
-  problem.A_is_rank_share = qp.K_is_rank_share;  // QᵀK_rQ sums to QᵀKQ: Q is the same on every rank
-  problem.distributed_row = qp.distributed_row;  // v is indexed like u
+  problem.A_is_rank_share = layout.share;            // QᵀK_rQ sums to QᵀKQ: Q is the same on every rank
+  problem.distributed_row = layout.distributed_row;  // v is indexed like u
   problem.b = QT * qp.f;
   if (qp.near_null_space.rows() == n) problem.near_null_space = Q_inv * qp.near_null_space;
   return true;

@@ -11,7 +11,8 @@
 #include <string>
 
 #include "contactqp/qp.hpp"
-#include "qp/petsc_bound_qp.hpp"
+#include "petsc_bound_qp.hpp"
+#include "petsc_solver.hpp"
 
 namespace contactqp::detail {
 
@@ -21,7 +22,8 @@ struct BoundForm {
 };
 
 // False with `message` set when a group's rows are linearly dependent (the bound form needs
-// independent rows at each node; the other backends accept such rows).
-bool make_bound_form(const QuadraticProgram& qp, BoundForm& form, std::string& message);
+// independent rows at each node; the other backends accept such rows). `layout` says where
+// qp.K's rows are (whole, or a rank's share), and so where A's are: v is indexed like u.
+bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, BoundForm& form, std::string& message);
 
 }  // namespace contactqp::detail

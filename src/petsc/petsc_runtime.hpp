@@ -1,7 +1,7 @@
-// The PETSc runtime shared by the PETSc solver of K (petsc_solver.cpp) and the bound-constrained
-// QP solver of the petsc backend (petsc_bound_qp.cpp): PetscInitialize once per process, the
-// options database handed from one user to the next, PETSc's error text, one lock. Internal
-// to cqp_qp and the only header besides those two files that includes PETSc.
+// The PETSc runtime shared by the PETSc solver of K (petsc_solver.cpp), the bound-constrained
+// QP solver of the petsc backend (petsc_bound_qp.cpp) and the partition: PetscInitialize once
+// per process, the options database handed from one user to the next, PETSc's error text, one
+// lock. Internal to the room (cqp_petsc), like the other headers that include PETSc.
 #pragma once
 
 #include <petscsys.h>

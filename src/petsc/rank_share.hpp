@@ -1,4 +1,4 @@
-// Under mpirun with the petsc backend, which elements each rank assembles (model.hpp's
+// Under mpirun with the petsc backend, which elements each rank assembles (par_qp.hpp's
 // RankShare, docs/petsc.md): the mesh's nodes are partitioned (PT-Scotch through PETSc), the
 // DOFs of each part get consecutive rows of the distributed matrix, and a rank assembles the
 // elements whose first free DOF's row lies in its block of rows (PETSc's split into contiguous
@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "contactqp/model.hpp"
+#include "contactqp/petsc/par_qp.hpp"
 
 namespace contactqp::detail {
 

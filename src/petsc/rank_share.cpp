@@ -2,8 +2,7 @@
 #include "rank_share.hpp"
 
 #include "contactqp/mesh.hpp"
-#include "contactqp/processes.hpp"
-#include "node_elements.hpp"
+#include "fe/node_elements.hpp"
 
 namespace contactqp::detail {
 namespace {

@@ -1,11 +1,13 @@
 // The petsc backend: the contact QP brought to bound form (bound_form.hpp) and solved by PETSc
-// on the distributed matrix (src/qp/petsc_bound_qp.cpp): a primal-dual active-set loop whose
+// on the distributed matrix (petsc_bound_qp.cpp): a primal-dual active-set loop whose
 // steps are KSP solves (CG + GAMG with the rigid-body modes) by default, TAO with
 // method=tao. docs/petsc.md has the design, its measurements and mpirun.
 //
 //   transform   A = QᵀKQ, b = Qᵀf; row i of Bu ≤ g becomes v_i ≤ g_i     (per node, Eigen)
 //   iterate     the bound QP in PETSc, every rank holding its rows of A
 //   recover     u = Q v, λ = μ
+#include "petsc_backend.hpp"
+
 #include <algorithm>
 #include <utility>
 
@@ -14,6 +16,7 @@
 #include "bound_form.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
+#include "mpi.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -40,12 +43,16 @@ BoundQpOptions backend_settings(const SolveOptions& options) {
 }
 
 // The relative KKT residual of certificate.hpp without stationarity (which the inner solves
-// hold): primal violation / L, negative multipliers / F, complementarity / (F L).
-double relative_residual(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& mu) {
+// hold): primal violation / L, negative multipliers / F, complementarity / (F L). K u sums the
+// ranks' products when qp.K is a share.
+double relative_residual(const QuadraticProgram& qp, const MatrixLayout& layout, const VectorXd& u,
+                         const VectorXd& mu) {
   if (mu.size() == 0) return 0;
   const VectorXd lambda = mu.cwiseMax(0.0);
   const VectorXd w = qp.g - qp.B * u;
-  const double L = length_scale(qp, u), F = force_scale(qp, u, lambda);
+  VectorXd Ku = qp.K * u;
+  if (layout.share) sum_over_ranks(Ku.data(), Ku.size());
+  const double L = length_scale(qp, u), F = force_scale(qp.f, Ku, qp.B.transpose() * lambda);
   const double violation = std::max(0.0, -w.minCoeff());
   const double negative = std::max(0.0, -mu.minCoeff());
   const double complementarity = lambda.cwiseProduct(w).cwiseAbs().maxCoeff();
@@ -55,11 +62,13 @@ double relative_residual(const QuadraticProgram& qp, const VectorXd& u, const Ve
 
 void check_petsc_options(const SolveOptions& options) { backend_settings(options); }
 
-SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options) {
+}  // namespace
+
+SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, const SolveOptions& options) {
   SolveResult result;
   Stopwatch clock;
   BoundForm form;
-  if (!make_bound_form(qp, form, result.message)) {
+  if (!make_bound_form(qp, layout, form, result.message)) {
     result.status = Status::NumericalError;
     result.u = VectorXd::Zero(qp.n_dofs());
     result.lambda = VectorXd::Zero(qp.n_constraints());
@@ -70,10 +79,10 @@ SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options)
   BoundQpOptions settings = backend_settings(options);
   settings.tol = options.tol;
   settings.max_iterations = options.max_iterations;
-  settings.petsc_options = options.petsc_options;
+  settings.petsc_options = petsc_options_of(options.library_options);
   settings.verbose = options.verbose;
   settings.residual = [&](const VectorXd& v, const VectorXd& mu) {
-    return relative_residual(qp, VectorXd(form.Q * v), mu);
+    return relative_residual(qp, layout, VectorXd(form.Q * v), mu);
   };
   if (options.observer)
     settings.observer = [&](int k, const VectorXd& v, const VectorXd& mu) {
@@ -98,7 +107,7 @@ SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options)
   result.diagnostics["petsc_memory_mb_per_rank"] = solved.petsc_bytes / 1048576.0;
   // What this rank assembled: the whole K, or under mpirun its share (qp.hpp); rank 0's in the
   // result files.
-  result.diagnostics["k_rank_share"] = qp.K_is_rank_share ? 1 : 0;
+  result.diagnostics["k_rank_share"] = layout.share ? 1 : 0;
   result.diagnostics["k_nonzeros_this_rank"] = static_cast<double>(qp.K.nonZeros());
 
   const std::string how = solved.method + "; " + std::to_string(solved.iterations) + " outer steps, " +
@@ -122,15 +131,16 @@ SolveResult solve_petsc(const QuadraticProgram& qp, const SolveOptions& options)
   if (options.K_factor) {
     result.K_factor = options.K_factor;
   } else {
-    SolveOptions petsc_options = options;
-    petsc_options.linear_solver = LinearSolverKind::Petsc;
-    std::string message;
-    result.K_factor = factor_of_K(qp, petsc_options, result.timings, message);
+    LinearSolverOptions settings_of_K = linear_solver_options(qp, options);
+    settings_of_K.kind = LinearSolverKind::Petsc;
+    Stopwatch factor_clock;
+    result.K_factor = make_petsc_solver(qp.K, settings_of_K, layout);
+    result.timings.add("factorize", factor_clock.seconds());
+    if (!result.K_factor->ok()) result.K_factor.reset();  // certify() then reports θ unavailable
   }
   return result;
 }
 
-}  // namespace
 }  // namespace contactqp::detail
 
 CONTACTQP_BUILTIN(petsc) {
@@ -139,8 +149,13 @@ CONTACTQP_BUILTIN(petsc) {
   petsc.summary = "the bound form solved by PETSc (active set with KSP solves, or TAO), under mpirun too";
   petsc.order = 60;
   petsc.option_names = {"method", "inexact", "reuse_preconditioner"};
-  petsc.available = linear_solver_available(LinearSolverKind::Petsc);
   petsc.check_options = check_petsc_options;
-  petsc.solve = solve_petsc;
+#ifdef CONTACTQP_HAVE_PETSC  // set by CMake when PETSc was found (CONTACTQP_WITH_PETSC)
+  petsc.solve = [](const QuadraticProgram& qp, const SolveOptions& options) {
+    return solve_bound_form(qp, MatrixLayout{}, options);  // K whole on every rank
+  };
+#else
+  petsc.available = false;
+#endif
   register_backend(petsc);
 }

@@ -1,0 +1,30 @@
+// The steps solve() takes around every backend (solve.cpp), for a library whose problems this
+// process holds only part of (src/petsc/'s ParQuadraticProgram): it runs the same steps with its
+// own products of K and its own hand-over to the backend, instead of a second copy of them.
+#pragma once
+
+#include <functional>
+
+#include "contactqp/qp.hpp"
+
+namespace contactqp::detail {
+
+// How the steps apply K: the QP's own K (whole_K), or a product its library sums over the
+// processes that hold K's parts.
+struct KOperations {
+  std::function<VectorXd(const VectorXd& u)> times;  // K u
+  std::function<VectorXd()> diagonal;                // K's diagonal
+};
+KOperations whole_K(const QuadraticProgram& qp);  // refers to qp: keep it alive
+
+// Runs the backend on a validated (and scaled) problem.
+using BackendSolve = std::function<SolveResult(const QuadraticProgram& qp, const SolveOptions& options)>;
+
+// Validates the QP and the options (backend options and problem kind too), scales, runs
+// `backend_solve`, unscales, guards against non-finite and overflowed output, zeros the
+// multipliers of separated rows and reports the solver of K's statistics: solve() is this with
+// whole_K and the backend's registration.
+SolveResult solve_with(const QuadraticProgram& qp, const SolveOptions& options, const KOperations& K,
+                       const BackendSolve& backend_solve);
+
+}  // namespace contactqp::detail

@@ -1,0 +1,21 @@
+// MPI as the room uses it, seen without MPI's headers: defined in petsc_runtime.cpp (MPI as
+// PETSc started it), or without PETSc in without_petsc.cpp (one process).
+#pragma once
+
+#include <map>
+#include <string>
+
+namespace contactqp::detail {
+
+// -1 (rank) and 0 (size) while MPI does not run or is finalised.
+int mpi_rank();
+int mpi_size();
+// In place, the sum over the ranks (MPI_Allreduce on MPI_COMM_WORLD; collective). Nothing on one rank.
+void sum_over_ranks(double* values, long n);
+// agree_on_exit() (processes.hpp) on MPI_COMM_WORLD.
+int mpi_agree_on_exit(int status, const std::string& error_line, double timeout_seconds);
+
+// PETSc's options database entries in SolveOptions::library_options ("petsc"), or "".
+std::string petsc_options_of(const std::map<std::string, std::string>& library_options);
+
+}  // namespace contactqp::detail

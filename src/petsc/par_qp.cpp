@@ -1,0 +1,87 @@
+// The distributed problem (contactqp/petsc/par_qp.hpp): assembled in rank shares, solved and
+// certified by the generic steps with K's products summed over the ranks.
+#include "contactqp/petsc/par_qp.hpp"
+
+#include "contactqp/errors.hpp"
+#include "mpi.hpp"
+#include "petsc_backend.hpp"
+#include "rank_share.hpp"
+#include "solve_steps.hpp"
+
+namespace contactqp {
+
+ParQuadraticProgram assemble_par_qp(Model& model, const RankShare& share) {
+  ParQuadraticProgram qp;
+  qp.rank = share.rank;
+  qp.ranks = share.ranks;
+  if (share.ranks <= 1) {
+    qp.share = assemble_qp(model);
+    return qp;
+  }
+  if (!share.distributed_row.empty() && static_cast<int>(share.distributed_row.size()) != model.n_free)
+    throw InputError("RankShare.distributed_row", "has " + std::to_string(share.distributed_row.size()) +
+                                                      " entries for " + std::to_string(model.n_free) + " DOFs");
+  qp.distributed_row =
+      share.distributed_row.empty() ? detail::distributed_rows(model, share.ranks) : share.distributed_row;
+  if (qp.distributed_row.empty())
+    model.warnings.push_back(
+        "the mesh could not be partitioned between the MPI ranks (PETSc's MatPartitioning "
+        "failed): each rank assembles the elements of a block of DOFs in their own order");
+  qp.share = assemble_qp(model, detail::owned_elements(model, share, qp.distributed_row));
+  return qp;
+}
+
+VectorXd K_times(const ParQuadraticProgram& qp, const VectorXd& u) {
+  VectorXd Ku = qp.share.K * u;
+  if (qp.ranks > 1) detail::sum_over_ranks(Ku.data(), Ku.size());
+  return Ku;
+}
+
+SolveResult solve(const ParQuadraticProgram& qp, const SolveOptions& options) {
+  if (qp.ranks > 1 && options.backend != Backend::Petsc)
+    throw InputError("backend",
+                     "= " + to_string(options.backend) +
+                         ": K is assembled in shares over the MPI ranks, which only the petsc backend solves");
+  const detail::MatrixLayout layout{qp.ranks > 1, qp.distributed_row};
+  detail::KOperations K;
+  K.times = [&qp](const VectorXd& u) { return K_times(qp, u); };
+  K.diagonal = [&qp]() {
+    // A rank's share holds part of each diagonal entry at its boundary: the ranks' sum is K's.
+    VectorXd diagonal = qp.share.K.diagonal();
+    if (qp.ranks > 1) detail::sum_over_ranks(diagonal.data(), diagonal.size());
+    return diagonal;
+  };
+  return detail::solve_with(qp.share, options, K, [&layout](const QuadraticProgram& scaled, const SolveOptions& o) {
+    return detail::solve_bound_form(scaled, layout, o);
+  });
+}
+
+Certificate certify(const ParQuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda,
+                    const LinearSolver* K_factor) {
+  if (qp.ranks <= 1) return certify(qp.share, u, lambda, K_factor);
+  // Every vector but K u is whole on every rank: the terms need no other sum.
+  const VectorXd Ku = K_times(qp, u);
+  CertificateTerms terms = certificate_terms(qp.share, Ku, u, lambda);
+  if (K_factor && K_factor->ok()) {
+    const VectorXd r = Ku - qp.share.f + qp.share.B.transpose() * lambda;
+    terms.r_K_inverse_r = r.dot(K_factor->solve(r));
+  }
+  return certificate_from(terms);
+}
+
+namespace detail {
+
+std::string petsc_options_of(const std::map<std::string, std::string>& library_options) {
+  const auto found = library_options.find("petsc");
+  return found == library_options.end() ? std::string() : found->second;
+}
+
+}  // namespace detail
+
+std::string petsc_options_of(const SolveOptions& options) { return detail::petsc_options_of(options.library_options); }
+
+void set_petsc_options(SolveOptions& options, const std::string& entries) {
+  options.library_options["petsc"] = entries;
+}
+
+}  // namespace contactqp
