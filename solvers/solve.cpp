@@ -24,6 +24,7 @@ LinearSolverOptions linear_solver_options(const QuadraticProgram& qp, const Solv
   settings.tol = options.tol;
   settings.library_options = options.library_options;
   settings.near_null_space = qp.near_null_space;
+  settings.coarse_space = qp.coarse_space;
   settings.verbose = options.verbose;
   return settings;
 }

@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "contactqp/coarse_space.hpp"
+
 namespace contactqp {
 
 // Which library solves with K (SolveOptions::linear_solver, --linear-solver, solver.linear_solver).
@@ -108,6 +110,9 @@ struct LinearSolverOptions {
   // n × k near-null space of A (rigid-body modes on the free DOFs), for algebraic multigrid;
   // empty when unknown. Not referenced after construction.
   Eigen::MatrixXd near_null_space;
+  // Quadratic elements: the P1 level (coarse_space.hpp) for a multigrid with a p-level; empty
+  // otherwise. Not referenced after construction.
+  CoarseSpace coarse_space;
   // Options of the library that solves, in its own syntax, by library name (SolveOptions::
   // library_options, passed on unchanged).
   std::map<std::string, std::string> library_options;

@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "contactqp/coarse_space.hpp"
 #include "contactqp/friction.hpp"
 #include "contactqp/linear_solver.hpp"
 #include "contactqp/timer.hpp"
@@ -41,6 +42,9 @@ struct QuadraticProgram {
   // n × k rigid-body modes on the free DOFs (k = 3 in 2D), for algebraic multigrid in an
   // iterative solver of K; empty when unknown. Filled by assemble_qp; backends never need it.
   Eigen::MatrixXd near_null_space;
+  // Quadratic elements: the P1 level for a multigrid solver of K (coarse_space.hpp); empty for
+  // linear elements or when unknown. Filled by assemble_qp; backends never need it.
+  CoarseSpace coarse_space;
   // Friction at the contact rows (friction.hpp): empty (law None) for a frictionless problem.
   FrictionBlock friction;
 

@@ -6,6 +6,7 @@
 #include "contact/contact.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/model.hpp"
+#include "model/coarse_space.hpp"
 #include "model/rigid_body_modes.hpp"
 #include "stiffness_matrix.hpp"
 
@@ -88,6 +89,7 @@ QuadraticProgram assemble_qp(Model& model, const std::vector<char>& elements) {
   detail::add_contact_rows(model, qp);
   detail::add_friction_rows(model, qp);                  // nothing without friction
   qp.near_null_space = detail::rigid_body_modes(model);  // for AMG in an iterative solver of K
+  qp.coarse_space = detail::p1_coarse_space(model);      // for its P1 level (quadratic elements)
   model.timings.add("assemble", clock.seconds());
   return qp;
 }

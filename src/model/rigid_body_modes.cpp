@@ -8,30 +8,36 @@
 
 namespace contactqp::detail {
 
-Eigen::MatrixXd rigid_body_modes(const Model& model) {
+RigidBodyMotions::RigidBodyMotions(const Model& model) : model_(model) {
   const Mesh& mesh = model.mesh;
   const int n_nodes = mesh.n_nodes();
-  const int dim = model.dim;
-  const int n_modes = dim == 2 ? 3 : 6;
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (int node = 0; node < n_nodes; ++node) centroid += mesh.nodes[node];
-  if (n_nodes > 0) centroid /= n_nodes;
-  double extent = 0;
-  for (int node = 0; node < n_nodes; ++node) extent = std::max(extent, (mesh.nodes[node] - centroid).norm());
-  if (!(extent > 0)) extent = 1;
+  for (int node = 0; node < n_nodes; ++node) centroid_ += mesh.nodes[node];
+  if (n_nodes > 0) centroid_ /= n_nodes;
+  extent_ = 0;
+  for (int node = 0; node < n_nodes; ++node) extent_ = std::max(extent_, (mesh.nodes[node] - centroid_).norm());
+  if (!(extent_ > 0)) extent_ = 1;
+}
 
-  Eigen::MatrixXd modes = Eigen::MatrixXd::Zero(model.n_free, n_modes);
-  Eigen::MatrixXd global(dim, n_modes);  // the motions at one node, global axes
-  for (int node = 0; node < n_nodes; ++node) {
-    const Eigen::Vector3d x = (mesh.nodes[node] - centroid) / extent;
-    if (dim == 2) {
-      global << 1, 0, -x.y(), 0, 1, x.x();
-    } else {
-      // Translations, then rotations about x, y, z: ω × x.
-      global << 1, 0, 0, 0, x.z(), -x.y(), 0, 1, 0, -x.z(), 0, x.x(), 0, 0, 1, x.y(), -x.x(), 0;
-    }
-    // Component c of a node's DOFs is along column c of its frame T: the value is (Tᵀ m)_c.
-    const Eigen::MatrixXd local = dof_frame(model, node).transpose() * global;
+Eigen::MatrixXd RigidBodyMotions::at(int node) const {
+  const int dim = model_.dim;
+  const Eigen::Vector3d x = (model_.mesh.nodes[node] - centroid_) / extent_;
+  Eigen::MatrixXd global(dim, n_modes());  // the motions at the node, global axes
+  if (dim == 2) {
+    global << 1, 0, -x.y(), 0, 1, x.x();
+  } else {
+    // Translations, then rotations about x, y, z: ω × x.
+    global << 1, 0, 0, 0, x.z(), -x.y(), 0, 1, 0, -x.z(), 0, x.x(), 0, 0, 1, x.y(), -x.x(), 0;
+  }
+  // Component c of a node's DOFs is along column c of its frame T: the value is (Tᵀ m)_c.
+  return dof_frame(model_, node).transpose() * global;
+}
+
+Eigen::MatrixXd rigid_body_modes(const Model& model) {
+  const RigidBodyMotions motions(model);
+  const int dim = model.dim;
+  Eigen::MatrixXd modes = Eigen::MatrixXd::Zero(model.n_free, motions.n_modes());
+  for (int node = 0; node < model.mesh.n_nodes(); ++node) {
+    const Eigen::MatrixXd local = motions.at(node);
     for (int c = 0; c < dim; ++c) {
       const int row = model.free_index[dim * node + c];
       if (row >= 0) modes.row(row) = local.row(c);

@@ -14,4 +14,18 @@ namespace contactqp::detail {
 // in 3D: translations along x, y, z and the rotations e_k × (x − x_c)/ℓ about the three axes.
 Eigen::MatrixXd rigid_body_modes(const Model& model);
 
+// The same motions at every node and component: the row of node n's component c is
+// dim·n + c (in its DOF frame), prescribed components included.
+class RigidBodyMotions {
+ public:
+  explicit RigidBodyMotions(const Model& model);
+  int n_modes() const { return model_.dim == 2 ? 3 : 6; }
+  Eigen::MatrixXd at(int node) const;  // dim × n_modes
+
+ private:
+  const Model& model_;
+  Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
+  double extent_ = 1;
+};
+
 }  // namespace contactqp::detail

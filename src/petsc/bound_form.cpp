@@ -42,6 +42,16 @@ bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, Bou
 
   std::vector<Eigen::Triplet<double>> Q, Q_inverse;
   std::vector<char> in_group(n, 0);
+  // The P1 level (quadratic elements): column c of a free vertex DOF d is column_of_dof[d].
+  // A group all of whose DOFs are vertex DOFs gets its change of variables on those columns
+  // too (Q_c, a block of Q), so that the candidate vertex's coarse columns are its variables.
+  const CoarseSpace& coarse = qp.coarse_space;
+  const int n_coarse = coarse.empty() ? 0 : static_cast<int>(coarse.interpolation.cols());
+  std::vector<int> column_of_dof(n_coarse ? n : 0, -1);
+  for (int c = 0; c < n_coarse; ++c)
+    if (coarse.column_dof[c] >= 0) column_of_dof[coarse.column_dof[c]] = c;
+  std::vector<Eigen::Triplet<double>> Q_coarse, Q_coarse_inverse;
+  std::vector<char> coarse_in_group(n_coarse, 0);
   BoundQp& problem = form.problem;
   problem.bounded.assign(m, -1);
   problem.upper = qp.g;
@@ -81,6 +91,16 @@ bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, Bou
       }
     }
     for (int a = 0; a < r; ++a) problem.bounded[rows[a]] = columns[a];
+    if (n_coarse && std::all_of(columns.begin(), columns.end(), [&](int j) { return column_of_dof[j] >= 0; }))
+      for (int a = 0; a < c; ++a) {
+        coarse_in_group[column_of_dof[columns[a]]] = 1;
+        for (int b = 0; b < c; ++b) {
+          if (inverse(a, b) != 0)
+            Q_coarse.emplace_back(column_of_dof[columns[a]], column_of_dof[columns[b]], inverse(a, b));
+          if (T(a, b) != 0)
+            Q_coarse_inverse.emplace_back(column_of_dof[columns[a]], column_of_dof[columns[b]], T(a, b));
+        }
+      }
   }
   for (int j = 0; j < n; ++j)
     if (!in_group[j]) {
@@ -100,6 +120,28 @@ bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, Bou
   problem.distributed_row = layout.distributed_row;  // v is indexed like u
   problem.b = QT * qp.f;
   if (qp.near_null_space.rows() == n) problem.near_null_space = Q_inv * qp.near_null_space;
+  if (n_coarse) {
+    for (int c = 0; c < n_coarse; ++c)
+      if (!coarse_in_group[c]) {
+        Q_coarse.emplace_back(c, c, 1.0);
+        Q_coarse_inverse.emplace_back(c, c, 1.0);
+      }
+    SparseMatrix Q_c(n_coarse, n_coarse), Q_c_inverse(n_coarse, n_coarse);
+    Q_c.setFromTriplets(Q_coarse.begin(), Q_coarse.end());
+    Q_c_inverse.setFromTriplets(Q_coarse_inverse.begin(), Q_coarse_inverse.end());
+    problem.coarse_interpolation = Q_inv * coarse.interpolation * Q_c;
+    problem.coarse_interpolation.prune(0.0);
+    if (coarse.near_null_space.rows() == n_coarse)
+      problem.coarse_near_null_space = Q_c_inverse * coarse.near_null_space;
+    problem.coarse_vertex = coarse.column_vertex;
+    problem.coarse_row = coarse.column_dof;  // v is indexed like u
+    problem.coarse_block_size = coarse.block_size;
+    problem.coarse_bounded.assign(m, -1);
+    for (int i = 0; i < m; ++i) {
+      const int column = problem.bounded[i] >= 0 ? column_of_dof[problem.bounded[i]] : -1;
+      if (column >= 0 && coarse_in_group[column]) problem.coarse_bounded[i] = column;
+    }
+  }
   return true;
 }
 

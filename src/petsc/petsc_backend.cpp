@@ -21,7 +21,9 @@
 namespace contactqp::detail {
 namespace {
 
-// The backend options: method=pdas|tao; for pdas inexact=true|false (loose early steps) and
+// The backend options: method=pdas|tao; for pdas hierarchy=kept|fresh (one multigrid
+// hierarchy for the whole solve, or a set-up per step), p1_start=true|false (kept: the P1
+// contact problem first), inexact=true|false (loose early steps) and, with fresh,
 // reuse_preconditioner=true|false (a step's GAMG kept while its solves stay short).
 BoundQpOptions backend_settings(const SolveOptions& options) {
   BoundQpOptions settings;
@@ -30,17 +32,48 @@ BoundQpOptions backend_settings(const SolveOptions& options) {
       if (value != "pdas" && value != "tao")
         throw InputError(option_field(key), "= \"" + value + "\": not a method of petsc; valid: pdas, tao");
       settings.method = value;
-    } else if (key == "inexact" || key == "reuse_preconditioner") {
+    } else if (key == "hierarchy") {
+      if (value != "kept" && value != "fresh")
+        throw InputError(option_field(key), "= \"" + value + "\": not a hierarchy of petsc; valid: kept, fresh");
+      settings.kept_hierarchy = value == "kept";
+    } else if (key == "inexact" || key == "reuse_preconditioner" || key == "p1_start") {
       if (value != "true" && value != "false" && value != "1" && value != "0")
         throw InputError(option_field(key), "= \"" + value + "\": not true or false");
-      (key == "inexact" ? settings.inexact : settings.reuse_preconditioner) = value == "true" || value == "1";
+      bool& flag = key == "inexact"    ? settings.inexact
+                   : key == "p1_start" ? settings.p1_start
+                                       : settings.reuse_preconditioner;
+      flag = value == "true" || value == "1";
     } else {
-      throw InputError(option_field(key),
-                       "= \"" + value + "\": not an option of petsc; valid: method, inexact, reuse_preconditioner");
+      throw InputError(option_field(key), "= \"" + value +
+                                              "\": not an option of petsc; valid: method, hierarchy, p1_start, "
+                                              "inexact, reuse_preconditioner");
     }
   }
   return settings;
 }
+
+// K⁻¹ r = Q A⁻¹ Qᵀ r (A = QᵀKQ): the contact solve's solver of A serves certify()'s θ, so that
+// the solve sets up one preconditioner in all.
+class SolverOfK final : public LinearSolver {
+ public:
+  SolverOfK(std::shared_ptr<const LinearSolver> of_A, std::shared_ptr<const SparseMatrix> Q)
+      : of_A_(std::move(of_A)), Q_(std::move(Q)) {}
+  bool ok() const override { return of_A_->ok(); }
+  const std::string& message() const override { return of_A_->message(); }
+  int size() const override { return of_A_->size(); }
+  VectorXd solve(const VectorXd& b) const override { return *Q_ * of_A_->solve(VectorXd(Q_->transpose() * b)); }
+  LinearSolverStatistics statistics() const override { return of_A_->statistics(); }
+  std::vector<std::string> warnings() const override { return of_A_->warnings(); }
+
+ protected:
+  std::shared_ptr<const LinearSolver> scaled_solver(double c) const override {
+    return std::make_shared<SolverOfK>(of_A_->scaled(c), Q_);
+  }
+
+ private:
+  std::shared_ptr<const LinearSolver> of_A_;
+  std::shared_ptr<const SparseMatrix> Q_;
+};
 
 // The relative KKT residual of certificate.hpp without stationarity (which the inner solves
 // hold): primal violation / L, negative multipliers / F, complementarity / (F L). K u sums the
@@ -89,9 +122,11 @@ SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& lay
       options.observer(k, VectorXd(form.Q * v), mu);
     };
   const BoundQpResult solved = solve_bound_qp_petsc(std::move(form.problem), settings);
-  result.timings.add("factorize", solved.setup_seconds);
-  result.timings.add("iterate", solved.iterate_seconds);
-  result.timings.add("solve", solved.iterate_seconds);
+  // factorize: the matrix into PETSc and the preconditioner's set-up (the kept hierarchy's, or
+  // none when every step sets up its own inside the loop); iterate and solve: the loop.
+  result.timings.add("factorize", solved.setup_seconds + solved.pc_setup_seconds);
+  result.timings.add("iterate", solved.iterate_seconds - solved.pc_setup_seconds);
+  result.timings.add("solve", solved.iterate_seconds - solved.pc_setup_seconds);
 
   result.u = form.Q * solved.v;
   result.lambda = solved.mu;
@@ -101,6 +136,11 @@ SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& lay
   result.diagnostics["krylov_iterations"] = static_cast<double>(solved.krylov_iterations);
   result.diagnostics["linear_solves"] = static_cast<double>(solved.linear_solves);
   if (solved.preconditioner_setups > 0) result.diagnostics["preconditioner_setups"] = solved.preconditioner_setups;
+  if (solved.solver_of_A) {
+    result.diagnostics["preconditioner_setup_seconds"] = solved.pc_setup_seconds;
+    result.diagnostics["p1_start_steps"] = solved.p1_steps;
+    result.diagnostics["p1_start_krylov_iterations"] = static_cast<double>(solved.p1_krylov_iterations);
+  }
   result.diagnostics["active_constraints"] = solved.active;
   result.diagnostics["kkt_residual"] = solved.residual;
   result.diagnostics["petsc_matrix_mb_per_rank"] = solved.matrix_bytes / 1048576.0;
@@ -116,7 +156,8 @@ SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& lay
                                ? ", " + std::to_string(solved.preconditioner_setups) + " preconditioner set-ups"
                                : std::string()) +
                           "; " + std::to_string(qp.n_constraints()) + " candidate rows, " +
-                          std::to_string(solved.active) + " in contact; A " +
+                          std::to_string(solved.active) + " in contact" +
+                          (solved.multigrid.empty() ? std::string() : "; multigrid " + solved.multigrid) + "; A " +
                           short_number(solved.matrix_bytes / 1048576.0) + " MiB per rank" +
                           (options.verbose ? "; PETSc memory per rank " + short_number(solved.petsc_bytes / 1048576.0) +
                                                  " MiB (A, its working copy and the preconditioner)"
@@ -130,6 +171,9 @@ SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& lay
   // factor is what the petsc backend is there to avoid.
   if (options.K_factor) {
     result.K_factor = options.K_factor;
+  } else if (solved.solver_of_A && solved.solver_of_A->ok()) {
+    result.K_factor =
+        std::make_shared<SolverOfK>(solved.solver_of_A, std::make_shared<const SparseMatrix>(std::move(form.Q)));
   } else {
     LinearSolverOptions settings_of_K = linear_solver_options(qp, options);
     settings_of_K.kind = LinearSolverKind::Petsc;
@@ -148,7 +192,7 @@ CONTACTQP_BUILTIN(petsc) {
   petsc.name = "petsc";
   petsc.summary = "the bound form solved by PETSc (active set with KSP solves, or TAO), under mpirun too";
   petsc.order = 60;
-  petsc.option_names = {"method", "inexact", "reuse_preconditioner"};
+  petsc.option_names = {"method", "hierarchy", "p1_start", "inexact", "reuse_preconditioner"};
   petsc.check_options = check_petsc_options;
 #ifdef CONTACTQP_HAVE_PETSC  // set by CMake when PETSc was found (CONTACTQP_WITH_PETSC)
   petsc.solve = [](const QuadraticProgram& qp, const SolveOptions& options) {

@@ -22,7 +22,10 @@
 #include <set>
 #include <sstream>
 
+#include "bound_pdas.hpp"
+#include "coarse_level.hpp"
 #include "contactqp/timer.hpp"
+#include "ksp_helpers.hpp"
 #include "petsc_matrix.hpp"
 #include "petsc_runtime.hpp"
 
@@ -83,15 +86,7 @@ struct Work {
   }
 
   // The whole of a distributed vector on every rank.
-  Eigen::VectorXd gather(Vec v) {
-    check(VecScatterBegin(to_all, v, x_all, INSERT_VALUES, SCATTER_FORWARD), "VecScatter");
-    check(VecScatterEnd(to_all, v, x_all, INSERT_VALUES, SCATTER_FORWARD), "VecScatter");
-    const PetscScalar* all = nullptr;
-    VecGetArrayRead(x_all, &all);
-    Eigen::VectorXd out = order.to_dofs(all, n);
-    VecRestoreArrayRead(x_all, &all);
-    return out;
-  }
+  Eigen::VectorXd gather(Vec v) { return gather_whole(to_all, v, x_all, order, n); }
   // The rows this rank owns of a vector every rank holds whole.
   void set(Vec v, const Eigen::VectorXd& full) {
     PetscScalar* local = nullptr;
@@ -166,18 +161,6 @@ void assemble(Work& work, const BoundQp& problem) {
   check(VecScatterCreateToAll(work.x, &work.to_all, &work.x_all), "VecScatterCreateToAll");
 }
 
-std::string reason_text(KSP ksp, PetscInt iterations, double target) {
-  const char* name = nullptr;
-  KSPGetConvergedReasonString(ksp, &name);
-  PetscReal residual = 0;
-  KSPGetResidualNorm(ksp, &residual);
-  std::ostringstream text;
-  text.precision(3);
-  text << "the PETSc KSP did not converge: KSP_" << (name ? name : "unknown reason") << " after " << iterations
-       << " iterations at residual " << residual << " (target " << target << ")";
-  return text.str();
-}
-
 // A phase boundary: every rank learns whether any rank failed, and the lowest failing rank's
 // message, so that all ranks take the same branch (a rank that went on alone into a collective
 // call would wait forever for the one that stopped).
@@ -226,14 +209,6 @@ double petsc_bytes(Work& work) {
       bytes += matrix_bytes(interpolation);
   }
   return bytes;
-}
-
-// A number in a message, to four significant digits ("2.9e-11", not to_string's "0.000000").
-std::string number_text(double x) {
-  std::ostringstream text;
-  text.precision(4);
-  text << x;
-  return text.str();
 }
 
 double inf_norm(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
@@ -399,6 +374,166 @@ void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& option
                   (work.modes ? ", " + std::to_string(problem.near_null_space.cols()) + " near-null modes" : "");
 }
 
+// The kept hierarchy's solver of A (bound_pdas.hpp) behind the LinearSolver interface, on
+// vectors every rank holds whole: certify()'s θ solves with the contact solve's hierarchy.
+class HierarchySolver final : public LinearSolver {
+ public:
+  struct State {
+    std::shared_ptr<SolverOfA> solver;
+    Vec rhs = nullptr, x = nullptr, x_all = nullptr;
+    VecScatter to_all = nullptr;
+    RowOrder order;
+    PetscInt first = 0, end = 0;
+    int n = 0;
+    bool ok = true;
+    std::string message, method;
+    double setup_seconds = 0;
+    long long solves = 0;
+
+    ~State() {
+      if (petsc_finalized()) return;
+      std::lock_guard<std::mutex> lock(petsc_mutex());
+      for (Vec* v : {&rhs, &x, &x_all})
+        if (*v) VecDestroy(v);
+      if (to_all) VecScatterDestroy(&to_all);
+      solver.reset();  // its KSP and hierarchy, under the lock
+    }
+  };
+  HierarchySolver(std::shared_ptr<State> state, double scale) : state_(std::move(state)), scale_(scale) {}
+
+  bool ok() const override {
+    std::lock_guard<std::mutex> lock(petsc_mutex());
+    return state_->ok;
+  }
+  const std::string& message() const override { return state_->message; }
+  int size() const override { return state_->n; }
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const override {
+    State& s = *state_;
+    std::lock_guard<std::mutex> lock(petsc_mutex());
+    if (!s.ok || b.size() != s.n) return Eigen::VectorXd::Zero(b.size());
+    const double force = inf_norm(b);
+    if (force == 0) return Eigen::VectorXd::Zero(s.n);
+    PetscScalar* local = nullptr;
+    VecGetArray(s.rhs, &local);
+    s.order.to_local(b, s.first, s.end, local);
+    VecRestoreArray(s.rhs, &local);
+    ++s.solves;
+    if (!s.solver->solve(s.rhs, s.x, force)) {
+      s.ok = false;
+      s.message = "the PETSc KSP with the contact solve's hierarchy did not converge on a solve with A";
+      return Eigen::VectorXd::Zero(s.n);
+    }
+    return gather_whole(s.to_all, s.x, s.x_all, s.order, s.n) / scale_;
+  }
+  LinearSolverStatistics statistics() const override {
+    std::lock_guard<std::mutex> lock(petsc_mutex());
+    LinearSolverStatistics statistics;
+    statistics.name = "petsc";
+    statistics.method = state_->method;
+    statistics.setup_seconds = state_->setup_seconds;
+    statistics.solves = state_->solves;
+    statistics.iterations = state_->solver->iterations();
+    return statistics;
+  }
+
+ protected:
+  std::shared_ptr<const LinearSolver> scaled_solver(double c) const override {
+    return std::make_shared<HierarchySolver>(state_, scale_ * c);
+  }
+
+ private:
+  std::shared_ptr<State> state_;
+  double scale_ = 1.0;
+};
+
+// The primal-dual active-set loop with one hierarchy kept across its steps (bound_pdas.hpp),
+// on this rank's rows; v and μ whole on every rank for the caller's residual and the result.
+void solve_kept(Work& work, const BoundQp& problem, const BoundQpOptions& options, BoundQpResult& result) {
+  const int m = static_cast<int>(problem.bounded.size());
+  PetscBoundQp qp;
+  qp.A = work.A;
+  qp.b = work.b;
+  std::vector<std::pair<PetscInt, int>> mine;  // this rank's bounds: row, index
+  for (int i = 0; i < m; ++i) {
+    const PetscInt row = work.order.row(problem.bounded[i]);
+    if (row >= work.first && row < work.end) mine.emplace_back(row, i);
+  }
+  std::sort(mine.begin(), mine.end());
+  for (const auto& [row, i] : mine) {
+    qp.bounded.push_back(row);
+    qp.upper.push_back(problem.upper[i]);
+  }
+  CoarseLevel coarse;
+  if (problem.coarse_interpolation.cols() > 0) {
+    CoarseLevelInput input;
+    input.interpolation = &problem.coarse_interpolation;
+    input.modes = &problem.coarse_near_null_space;
+    input.column_vertex = &problem.coarse_vertex;
+    input.vertex_row = &problem.coarse_row;
+    input.block_size = problem.coarse_block_size;
+    check(coarse.create(input, work.order, work.first, work.end), "the P1 level");
+    qp.coarse_interpolation = coarse.interpolation();
+    qp.coarse_modes = coarse.modes();
+    for (const auto& [row, i] : mine)
+      qp.coarse_bounded.push_back(problem.coarse_bounded[i] >= 0 ? coarse.column(problem.coarse_bounded[i]) : -1);
+  }
+  // μ of this rank's bounds into the whole μ, on every rank.
+  auto whole_mu = [&](const std::vector<double>& mu_mine) {
+    Eigen::VectorXd mu = Eigen::VectorXd::Zero(m);
+    for (std::size_t k = 0; k < mine.size(); ++k) mu[mine[k].second] = mu_mine[k];
+    MPI_Allreduce(MPI_IN_PLACE, mu.data(), m, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    return mu;
+  };
+  BoundPdasOptions settings;
+  settings.tol = options.tol;
+  settings.max_iterations = options.max_iterations;
+  settings.inexact = options.inexact;
+  settings.p1_start = options.p1_start;
+  int step = 0;
+  settings.residual = [&](Vec v, const std::vector<double>& mu_mine) {
+    const Eigen::VectorXd whole = work.gather(v), mu = whole_mu(mu_mine);
+    if (options.observer) options.observer(++step, whole, mu.cwiseMax(0.0));
+    return options.residual(whole, mu);
+  };
+  BoundPdasResult solved;
+  bool options_error = false;
+  if (PetscErrorCode code = solve_bound_pdas(qp, settings, &solved, &options_error)) {
+    work.options_error = options_error;
+    check(code, options_error ? "the preconditioner's set-up" : "the active-set loop");
+  }
+  result.status = solved.status;
+  result.message = solved.message;
+  result.v = work.gather(solved.v);
+  result.mu = whole_mu(solved.mu).cwiseMax(0.0);
+  result.iterations = solved.iterations;
+  result.krylov_iterations = solved.krylov_iterations;
+  result.linear_solves = solved.linear_solves;
+  result.preconditioner_setups = solved.preconditioner_setups;
+  result.active = static_cast<int>(solved.active);
+  result.residual = solved.residual;
+  result.method = solved.method;
+  result.pc_setup_seconds = solved.setup_seconds;
+  result.p1_steps = solved.p1_steps;
+  result.p1_krylov_iterations = solved.p1_krylov_iterations;
+  std::ostringstream multigrid;
+  multigrid.precision(3);
+  multigrid << solved.multigrid.levels << " levels, grid complexity " << solved.multigrid.grid_complexity
+            << ", operator complexity " << solved.multigrid.operator_complexity;
+  result.multigrid = multigrid.str();
+  work.petsc_bytes = matrix_bytes(work.A) + solved.multigrid.bytes;
+
+  auto state = std::make_shared<HierarchySolver::State>();
+  state->solver = solved.solver_of_A;
+  state->order = work.order;
+  state->first = work.first;
+  state->end = work.end;
+  state->n = work.n;
+  state->method = "cg + " + solved.multigrid.method + " (the contact solve's hierarchy)";
+  check(MatCreateVecs(work.A, &state->x, &state->rhs), "MatCreateVecs");
+  check(VecScatterCreateToAll(state->x, &state->to_all, &state->x_all), "VecScatterCreateToAll");
+  result.solver_of_A = std::make_shared<HierarchySolver>(state, 1.0);
+}
+
 // TAO's bound-constrained methods on the same problem.
 void solve_tao(Work& work, const BoundQp& problem, const BoundQpOptions& options, BoundQpResult& result) {
   const int m = static_cast<int>(problem.bounded.size());
@@ -487,7 +622,9 @@ BoundQpResult solve_bound_qp_petsc(BoundQp problem, const BoundQpOptions& option
     if (!any_rank_failed(failure)) {
       clock.restart();
       try {
-        if (options.method == "pdas")
+        if (options.method == "pdas" && options.kept_hierarchy)
+          solve_kept(work, problem, options, result);
+        else if (options.method == "pdas")
           solve_pdas(work, problem, options, result);
         else
           solve_tao(work, problem, options, result);

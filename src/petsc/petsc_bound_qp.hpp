@@ -10,9 +10,11 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "contactqp/linear_solver.hpp"
 #include "contactqp/qp.hpp"
 
 namespace contactqp::detail {
@@ -25,6 +27,14 @@ struct BoundQp {
   Eigen::MatrixXd near_null_space;   // n × k (rigid-body modes in these variables), or empty
   bool A_is_rank_share = false;      // A is this rank's share: the ranks' shares sum to A (par_qp.hpp)
   std::vector<int> distributed_row;  // the row of each variable in PETSc's matrix, or empty (par_qp.hpp)
+  // Quadratic elements (else empty): the P1 level in these variables (coarse_space.hpp, with
+  // the columns of a candidate vertex in its own variables), its rigid-body modes, per column
+  // its vertex and the variable the vertex carries there (or −1), and per bound the column of
+  // its variable when its node is a vertex (or −1): the P1 contact problem of the P1 start.
+  Eigen::SparseMatrix<double> coarse_interpolation;
+  Eigen::MatrixXd coarse_near_null_space;
+  std::vector<int> coarse_vertex, coarse_row, coarse_bounded;
+  int coarse_block_size = 1;
 };
 
 struct BoundQpOptions {
@@ -43,6 +53,11 @@ struct BoundQpOptions {
   // faster in 3D, where the set-ups are the cost; off by default because the path of the
   // active set then depends on round-off (a scene in other units can take other steps).
   bool reuse_preconditioner = false;
+  // pdas: one multigrid hierarchy for the whole solve, kept across the active-set steps with
+  // its coarse operators following the fixed rows (bound_pdas.hpp; the default). false: the
+  // loop above, a set-up per step (or per rebuild with reuse_preconditioner).
+  bool kept_hierarchy = true;
+  bool p1_start = true;  // kept hierarchy, quadratic elements: solve the P1 contact problem first
   bool verbose = false;
   // The relative KKT residual of an iterate in the caller's terms (v and μ on every rank):
   // the loop stops when it is ≤ tol. Stationarity holds to the inner tolerance by construction.
@@ -69,6 +84,13 @@ struct BoundQpResult {
   double matrix_bytes = 0;
   double petsc_bytes = 0;
   std::vector<std::string> warnings;
+  // Kept hierarchy: a solver of A with that hierarchy (no second set-up), in these variables;
+  // null otherwise. Its statistics: the hierarchy's set-up time and the solves after the loop.
+  std::shared_ptr<const LinearSolver> solver_of_A;
+  double pc_setup_seconds = 0;  // the preconditioner's set-up (in setup_seconds' sibling iterate_seconds)
+  int p1_steps = 0;             // active-set steps of the P1 start (0: none)
+  long long p1_krylov_iterations = 0;
+  std::string multigrid;  // levels, grid and operator complexity of the hierarchy
 };
 
 // Never throws on a numerical failure (status and message say it); InputError for bad PETSc

@@ -8,7 +8,10 @@
 // exit status 2 included, ends PETSc and MPI in order.
 #include "petsc_solver.hpp"
 
+#include "coarse_level.hpp"
+#include "ksp_helpers.hpp"
 #include "mpi.hpp"
+#include "multigrid.hpp"
 #include "petsc_matrix.hpp"
 #include "petsc_runtime.hpp"
 #include "qp/builtins.hpp"
@@ -71,7 +74,9 @@ struct PetscSolver::Impl {
   Vec x = nullptr, b = nullptr;
   VecScatter to_all = nullptr;  // the distributed solution onto every rank (one rank: a copy)
   Vec x_all = nullptr;
-  void* default_test = nullptr;  // KSPConvergedDefault's context: the user's -ksp_rtol etc.
+  CoarseLevel coarse;             // quadratic elements: the P1 level (coarse_level.hpp)
+  Mat coarse_operator = nullptr;  // PᵀAP, when the P1 level is used
+  void* default_test = nullptr;   // KSPConvergedDefault's context: the user's -ksp_rtol etc.
   int n = 0;
   PetscInt first_row = 0, end_row = 0;  // the rows this rank owns
   RowOrder order;                       // the unknowns' rows in A
@@ -96,6 +101,7 @@ struct PetscSolver::Impl {
     if (x) VecDestroy(&x);
     if (b) VecDestroy(&b);
     if (ksp) KSPDestroy(&ksp);
+    if (coarse_operator) MatDestroy(&coarse_operator);
     if (A) MatDestroy(&A);
     if (default_test) KSPConvergedDefaultDestroy(default_test);
   }
@@ -176,17 +182,36 @@ bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const Linea
     if (code) return fail("MatSetNearNullSpace", code);
   }
 
-  // CG + GAMG by default; the options database may change any of it.
+  // Quadratic elements: the P1 level (P2 → P1 interpolation and its rigid-body modes).
+  MultigridData data;
+  data.A = A;
+  const CoarseSpace& space = settings.coarse_space;
+  if (!space.empty() && space.interpolation.rows() == n) {
+    CoarseLevelInput input;
+    input.interpolation = &space.interpolation;
+    input.modes = &space.near_null_space;
+    input.column_vertex = &space.column_vertex;
+    input.vertex_row = &space.column_dof;
+    input.block_size = space.block_size;
+    if ((code = coarse.create(input, order, first_row, end_row))) return fail("the P1 level", code);
+    data.coarse_interpolation = coarse.interpolation();
+    data.coarse_modes = coarse.modes();
+  }
+
+  // CG + the multigrid of multigrid.hpp by default; the options database may change any of it.
   if ((code = KSPCreate(PETSC_COMM_WORLD, &ksp))) return fail("KSPCreate", code);
   KSPSetOperators(ksp, A, A);
   KSPSetType(ksp, KSPCG);
   PC pc = nullptr;
   KSPGetPC(ksp, &pc);
-  PCSetType(pc, PCGAMG);
   KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED);                        // the rule bounds the true residual
   KSPSetTolerances(ksp, 0.0, 0.0, PETSC_DEFAULT, kMaxKrylovIterations);  // only the inner rule stops
   KSPConvergedDefaultCreate(&default_test);
   KSPSetConvergenceTest(ksp, converged, this, nullptr);
+  Stopwatch clock;
+  MultigridStatistics multigrid;
+  if ((code = set_up_multigrid(pc, data, &coarse_operator, &multigrid)))
+    return bad_options("the preconditioner's set-up", code);
   if ((code = KSPSetFromOptions(ksp))) return bad_options("KSPSetFromOptions", code);
   // A Krylov method other than CG measures its unpreconditioned residual only with the
   // preconditioner on the right: take that side unless the user chose a norm or side.
@@ -198,7 +223,6 @@ bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const Linea
   PetscStrcmp(type, KSPCG, &is_cg);
   if (!is_cg && !norm_given && !side_given) KSPSetPCSide(ksp, PC_RIGHT);
 
-  Stopwatch clock;
   code = KSPSetUp(ksp);
   if (code == PETSC_ERR_SUP && !norm_given && !side_given) {
     // Some methods (MINRES, ...) measure only the preconditioned residual: take PETSc's own
@@ -215,7 +239,13 @@ bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const Linea
   KSPGetPC(ksp, &pc);
   PCGetType(pc, &pc_type);
   KSPGetType(ksp, &type);
-  method = std::string(type ? type : "?") + " + " + (pc_type ? pc_type : "?") +
+  std::ostringstream levels;
+  levels.precision(3);
+  if (multigrid.levels > 0)
+    levels << " (" << multigrid.levels << " levels, grid complexity " << multigrid.grid_complexity
+           << ", operator complexity " << multigrid.operator_complexity << ")";
+  method = std::string(type ? type : "?") + " + " +
+           (multigrid.method.empty() ? (pc_type ? pc_type : "?") : multigrid.method) + levels.str() +
            (modes.cols() > 0 ? ", " + std::to_string(modes.cols()) + " near-null modes" : "") +
            (preconditioned_norm ? ", preconditioned residual norm" : "");
 
@@ -277,17 +307,8 @@ Eigen::VectorXd PetscSolver::solve(const Eigen::VectorXd& rhs, const Eigen::Vect
   if (code) {
     m.fail("KSPSolve", code);
   } else if (reason < 0) {
-    const char* name = nullptr;
-    KSPGetConvergedReasonString(m.ksp, &name);
-    PetscReal residual = 0;
-    KSPGetResidualNorm(m.ksp, &residual);
-    std::ostringstream text;
-    text.precision(3);
-    // KSPGetConvergedReasonString drops the enum's KSP_ prefix: the name as PETSc's manual has it.
-    text << "the PETSc KSP did not converge: KSP_" << (name ? name : "unknown reason") << " after " << iterations
-         << " iterations at residual " << residual << " (target " << m.target << ")";
     m.ok = false;
-    m.message = text.str();
+    m.message = reason_text(m.ksp, iterations, m.target);
   }
   if (!m.checked_unused && PetscRuntime::instance(m.options).generation() == m.generation) {
     m.checked_unused = true;
@@ -296,12 +317,7 @@ Eigen::VectorXd PetscSolver::solve(const Eigen::VectorXd& rhs, const Eigen::Vect
   }
 
   // Every rank receives the whole solution (the backends iterate on full vectors).
-  VecScatterBegin(m.to_all, m.x, m.x_all, INSERT_VALUES, SCATTER_FORWARD);
-  VecScatterEnd(m.to_all, m.x, m.x_all, INSERT_VALUES, SCATTER_FORWARD);
-  const PetscScalar* all = nullptr;
-  VecGetArrayRead(m.x_all, &all);
-  Eigen::VectorXd out = m.order.to_dofs(all, m.n) / scale_;
-  VecRestoreArrayRead(m.x_all, &all);
+  Eigen::VectorXd out = gather_whole(m.to_all, m.x, m.x_all, m.order, m.n) / scale_;
   if (!out.allFinite()) {
     if (m.ok) {
       m.ok = false;

@@ -86,6 +86,13 @@ void validate(const QuadraticProgram& qp) {
     throw InputError("qp.near_null_space", "has " + std::to_string(qp.near_null_space.rows()) + " rows, K has " +
                                                std::to_string(n) + " rows");
   if (!qp.near_null_space.allFinite()) throw InputError("qp.near_null_space", "has an entry that is not finite");
+  const CoarseSpace& coarse = qp.coarse_space;
+  if (!coarse.empty() && (coarse.interpolation.rows() != n ||
+                          coarse.column_vertex.size() != static_cast<std::size_t>(coarse.interpolation.cols()) ||
+                          coarse.column_dof.size() != coarse.column_vertex.size()))
+    throw InputError("qp.coarse_space", "has " + std::to_string(coarse.interpolation.rows()) + " rows and " +
+                                            std::to_string(coarse.interpolation.cols()) +
+                                            " columns, which disagree with K's rows or its per-column lists");
   if (!all_finite(qp.K)) throw InputError("qp.K", "has an entry that is not finite");
   if (!all_finite(qp.B)) throw InputError("qp.B", "has an entry that is not finite");
   if (!qp.f.allFinite()) throw InputError("qp.f", "has an entry that is not finite");

@@ -1,0 +1,537 @@
+// solve_bound_pdas() (bound_pdas.hpp): the active-set loop, its P1 start and its solver of A.
+#include "bound_pdas.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <set>
+#include <sstream>
+
+#include "contactqp/timer.hpp"
+#include "ksp_helpers.hpp"
+#include "masked_system.hpp"
+#include "petsc_runtime.hpp"
+#include "truncation.hpp"
+
+namespace contactqp::detail {
+namespace {
+
+// The inner rule of the PETSc solver of K (docs/linear-solvers.md): ‖r‖₂ ≤ 1e-3 · tol · F, so
+// that stationarity stays a tenth of tol; and its round-off floor.
+constexpr double kInnerFraction = 1e-3;
+constexpr double kRoundOff = 100 * 2.220446049250313e-16;
+constexpr PetscInt kMaxKrylovIterations = 10000;
+// A loose step reduces its own initial residual tenfold (never below the final rule): the
+// active set's next guess needs the step's direction, not its digits. Measured on the spheres:
+// 2–4 CG iterations a step, against 4–12 with a target tied to the KKT residual.
+constexpr double kLooseReduction = 0.1;
+// The P1 start stops at this relative KKT residual or when its active set repeats: the fine
+// loop only needs its active set and a good first iterate.
+constexpr double kP1Tolerance = 1e-6;
+
+// When a KSP solve stops: KSPConvergedDefault first (a user's -ksp_rtol, -ksp_max_it,
+// divergence), then ‖r‖₂ ≤ target — or, for a loose step, ≤ max(target, reduction · ‖r₀‖₂) —
+// with the round-off floor 100 ε ‖A‖∞ ‖x‖∞ below which CG only stagnates.
+struct StoppingRule {
+  double target = 0;
+  double reduction = 0;  // > 0: a loose step
+  double A_norm = 0;
+  double initial = 0;
+  void* default_test = nullptr;
+
+  static PetscErrorCode test(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason, void* context) {
+    PetscFunctionBeginUser;
+    StoppingRule& rule = *static_cast<StoppingRule*>(context);
+    PetscCall(KSPConvergedDefault(ksp, it, rnorm, reason, rule.default_test));
+    if (it == 0) rule.initial = rnorm;
+    if (*reason != KSP_CONVERGED_ITERATING) PetscFunctionReturn(0);
+    double target = rule.reduction > 0 ? std::max(rule.target, rule.reduction * rule.initial) : rule.target;
+    if (rnorm > target && rnorm <= 1e6 * target) {
+      Vec x = nullptr;
+      PetscReal x_norm = 0;
+      PetscCall(KSPBuildSolution(ksp, nullptr, &x));
+      PetscCall(VecNorm(x, NORM_INFINITY, &x_norm));
+      target = std::max(target, kRoundOff * rule.A_norm * x_norm);
+    }
+    if (rnorm <= target) *reason = KSP_CONVERGED_ATOL;
+    PetscFunctionReturn(0);
+  }
+};
+
+// A CG solver of a level's masked system, preconditioned by the masked `inner` PC.
+struct LevelSolver {
+  MaskedSystem mask;
+  KSP ksp = nullptr;
+  StoppingRule rule;
+
+  ~LevelSolver() {
+    if (petsc_finalized()) return;
+    if (ksp) KSPDestroy(&ksp);
+    if (rule.default_test) KSPConvergedDefaultDestroy(rule.default_test);
+  }
+
+  PetscErrorCode create(Mat A, PC inner, const char* prefix) {
+    PetscFunctionBeginUser;
+    PetscCall(mask.create(A));
+    PetscCall(MatNorm(A, NORM_INFINITY, &rule.A_norm));
+    PetscCall(KSPCreate(PetscObjectComm(reinterpret_cast<PetscObject>(A)), &ksp));
+    PetscCall(KSPSetOptionsPrefix(ksp, prefix));
+    PetscCall(KSPSetType(ksp, KSPCG));
+    PetscCall(KSPSetOperators(ksp, mask.op(), A));
+    PetscCall(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED));
+    PetscCall(KSPSetTolerances(ksp, 0.0, 0.0, PETSC_DEFAULT, kMaxKrylovIterations));
+    PetscCall(KSPConvergedDefaultCreate(&rule.default_test));
+    PetscCall(KSPSetConvergenceTest(ksp, StoppingRule::test, &rule, nullptr));
+    PC outer = nullptr;
+    PetscCall(KSPGetPC(ksp, &outer));
+    PetscCall(mask.wrap(outer, inner));
+    // The shell must stay a shell whatever -pc_type the user gave (that one is the inner PC's).
+    PetscCall(PCSetOptionsPrefix(outer, "contactqp_masked_"));
+    PetscCall(KSPSetFromOptions(ksp));
+    PetscCall(KSPSetInitialGuessNonzero(ksp, PETSC_TRUE));
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode solve(Vec rhs, Vec x, double target, double reduction, PetscInt* iterations,
+                       KSPConvergedReason* reason) {
+    PetscFunctionBeginUser;
+    rule.target = target;
+    rule.reduction = reduction;
+    PetscCall(KSPSolve(ksp, rhs, x));
+    PetscCall(KSPGetIterationNumber(ksp, iterations));
+    PetscCall(KSPGetConvergedReason(ksp, reason));
+    PetscFunctionReturn(0);
+  }
+};
+
+// What outlives the loop for the solver of A: the fine level's solver and hierarchy.
+struct FineState {
+  PC inner = nullptr;  // the hierarchy on A
+  Mat P1_operator = nullptr;
+  LevelSolver level;
+  TruncatedHierarchy truncation;
+  long long iterations = 0;
+  double tol = 1e-8;
+
+  ~FineState() {
+    if (petsc_finalized()) return;
+    if (inner) PCDestroy(&inner);
+    if (P1_operator) MatDestroy(&P1_operator);
+  }
+};
+
+class KeptSolverOfA final : public SolverOfA {
+ public:
+  explicit KeptSolverOfA(std::shared_ptr<FineState> state) : state_(std::move(state)) {}
+  bool solve(Vec rhs, Vec x, double force) override {  // the caller holds petsc_mutex()
+    FineState& s = *state_;
+    // No row fixed: W is A, and the coarse operators are A's again.
+    s.level.mask.fix({});
+    if (s.truncation.fix_rows({})) return false;
+    if (VecSet(x, 0.0)) return false;
+    const double target = kInnerFraction * s.tol * std::max(force, 1e-300);
+    PetscInt iterations = 0;
+    KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+    if (s.level.solve(rhs, x, target, 0.0, &iterations, &reason)) return false;
+    s.iterations += iterations;
+    return reason > 0;
+  }
+  long long iterations() const override { return state_->iterations; }
+
+ private:
+  std::shared_ptr<FineState> state_;
+};
+
+// Σ over the active bounds of a mixed hash of their global rows: the same whatever the ranks,
+// so that every rank remembers the same sets.
+std::uint64_t fingerprint(const std::vector<char>& active, const std::vector<PetscInt>& bounded, MPI_Comm comm) {
+  std::uint64_t sum = 0;
+  for (std::size_t i = 0; i < active.size(); ++i)
+    if (active[i]) {
+      std::uint64_t h = static_cast<std::uint64_t>(bounded[i]) + 0x9e3779b97f4a7c15ULL;
+      h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ULL;
+      h = (h ^ (h >> 27)) * 0x94d049bb133111ebULL;
+      sum += h ^ (h >> 31);
+    }
+  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_UINT64_T, MPI_SUM, comm);
+  return sum;
+}
+
+long long count_over_ranks(long long n, MPI_Comm comm) {
+  MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPI_LONG_LONG, MPI_SUM, comm);
+  return n;
+}
+
+// One level's contact problem for the loop.
+struct LevelProblem {
+  Mat A = nullptr;
+  Vec b = nullptr;
+  std::vector<PetscInt> bounded;  // global rows, this rank's, increasing
+  std::vector<double> upper;
+};
+
+struct LoopSettings {
+  double tol = 1e-8;
+  int max_iterations = 10000;
+  bool inexact = true;
+  bool final_steps = true;  // false (the P1 start): stop at tol or a repeated set, no final-rule step
+  std::function<double(Vec v, const std::vector<double>& mu)> residual;
+};
+
+struct LoopOutcome {
+  Status status = Status::NumericalError;
+  std::string message;
+  int steps = 0;
+  long long krylov_iterations = 0;
+  double residual = 0;
+};
+
+// The primal-dual active-set loop on one level, from x and `active`; μ out.
+PetscErrorCode active_set_loop(const LevelProblem& level, LevelSolver& solver, TruncatedHierarchy* truncation,
+                               const LoopSettings& settings, Vec x, std::vector<char>& active, std::vector<double>& mu,
+                               LoopOutcome* outcome) {
+  PetscFunctionBeginUser;
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(level.A));
+  PetscInt first = 0;
+  PetscCall(MatGetOwnershipRange(level.A, &first, nullptr));
+  const std::size_t m = level.bounded.size();
+  std::vector<double> diagonal(m);
+  {
+    const PetscScalar* d = nullptr;
+    PetscCall(VecGetArrayRead(solver.mask.diagonal(), &d));
+    for (std::size_t i = 0; i < m; ++i) diagonal[i] = d[level.bounded[i] - first];
+    PetscCall(VecRestoreArrayRead(solver.mask.diagonal(), &d));
+  }
+  PetscReal b_norm = 0;
+  PetscCall(VecNorm(level.b, NORM_INFINITY, &b_norm));
+  Vec rhs = nullptr, Ax = nullptr;
+  PetscCall(VecDuplicate(level.b, &rhs));
+  PetscCall(VecDuplicate(level.b, &Ax));
+  mu.assign(m, 0.0);
+  std::set<std::uint64_t> seen;
+  bool tight = !settings.inexact;
+  for (int k = 1;; ++k) {
+    seen.insert(fingerprint(active, level.bounded, comm));
+    std::vector<PetscInt> fixed;
+    std::vector<double> values;
+    for (std::size_t i = 0; i < m; ++i)
+      if (active[i]) {
+        fixed.push_back(level.bounded[i] - first);
+        values.push_back(level.upper[i]);
+      }
+    if (truncation) PetscCall(truncation->fix_rows(fixed));
+    solver.mask.fix(fixed);
+    PetscCall(solver.mask.system(level.b, values, x, rhs));
+    double force = b_norm;
+    for (double value : mu) force = std::max(force, std::abs(value));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &force, 1, MPI_DOUBLE, MPI_MAX, comm));
+    const double final_target = kInnerFraction * settings.tol * (force > 0 ? force : 1.0);
+    const bool solved_tight = tight;
+    PetscInt iterations = 0;
+    KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+    PetscCall(solver.solve(rhs, x, final_target, solved_tight ? 0.0 : kLooseReduction, &iterations, &reason));
+    outcome->krylov_iterations += iterations;
+    outcome->steps = k;
+    if (reason < 0) {
+      outcome->status = Status::NumericalError;
+      outcome->message = reason_text(solver.ksp, iterations, final_target);
+      break;
+    }
+    // μ = b − A x on the active bounds (the force that holds them), 0 on the others.
+    PetscCall(MatMult(level.A, x, Ax));
+    std::vector<char> next(m, 0);
+    {
+      const PetscScalar *b = nullptr, *ax = nullptr, *xs = nullptr;
+      PetscCall(VecGetArrayRead(level.b, &b));
+      PetscCall(VecGetArrayRead(Ax, &ax));
+      PetscCall(VecGetArrayRead(x, &xs));
+      bool finite = true;
+      for (std::size_t i = 0; i < m; ++i) {
+        const PetscInt r = level.bounded[i] - first;
+        mu[i] = active[i] ? b[r] - ax[r] : 0.0;
+        next[i] = mu[i] + diagonal[i] * (xs[r] - level.upper[i]) > 0;
+        finite = finite && std::isfinite(mu[i]) && std::isfinite(xs[r]);
+      }
+      PetscCall(VecRestoreArrayRead(x, &xs));
+      PetscCall(VecRestoreArrayRead(Ax, &ax));
+      PetscCall(VecRestoreArrayRead(level.b, &b));
+      int all_finite = finite ? 1 : 0;
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &all_finite, 1, MPI_INT, MPI_MIN, comm));
+      if (!all_finite) {
+        outcome->status = Status::NumericalError;
+        outcome->message = "the PETSc KSP returned a solution that is not finite";
+        break;
+      }
+    }
+    outcome->residual = settings.residual(x, mu);
+    long long changes = 0;
+    for (std::size_t i = 0; i < m; ++i) changes += next[i] != active[i];
+    const bool settled = count_over_ranks(changes, comm) == 0;
+    const bool repeats = !settled && seen.count(fingerprint(next, level.bounded, comm)) > 0;
+    if (!settings.final_steps && (outcome->residual <= settings.tol || settled || repeats)) {
+      outcome->status = Status::Converged;
+      active = next;
+      break;
+    }
+    if (!solved_tight && (outcome->residual <= settings.tol || settled || repeats)) {
+      // Settled, or cycling, at a loose step: the same active set again at the final rule.
+      tight = true;
+      seen.clear();
+      if (k >= settings.max_iterations) {
+        outcome->status = Status::MaxIterations;
+        outcome->message =
+            "stopped after " + std::to_string(k) + " active-set steps with residual " + number_text(outcome->residual);
+        break;
+      }
+      continue;
+    }
+    if (outcome->residual <= settings.tol) {
+      outcome->status = Status::Converged;
+      break;
+    }
+    if (settled) {
+      outcome->status = Status::NumericalError;
+      outcome->message = "the active set settled with residual " + number_text(outcome->residual) +
+                         " above tol: the inner KSP solves are not accurate enough (a smaller -ksp_rtol may help)";
+      break;
+    }
+    if (repeats) {
+      outcome->status = Status::NumericalError;
+      outcome->message = "the active-set steps cycled at residual " + number_text(outcome->residual) +
+                         " (try --backend-option method=tao)";
+      break;
+    }
+    if (k >= settings.max_iterations) {
+      outcome->status = Status::MaxIterations;
+      outcome->message =
+          "stopped after " + std::to_string(k) + " active-set steps with residual " + number_text(outcome->residual);
+      break;
+    }
+    active = std::move(next);
+  }
+  PetscCall(VecDestroy(&rhs));
+  PetscCall(VecDestroy(&Ax));
+  PetscFunctionReturn(0);
+}
+
+// The P1 start: the contact problem on the P1 level (PᵀAP, Pᵀb, a bound at each candidate
+// vertex), solved loosely with the AMG of that level; then x = P x₁ and the fine active set
+// where x reaches its bound. Returns false in *used when the problem has no P1 bounds.
+PetscErrorCode p1_start(const PetscBoundQp& qp, const FineState& fine, const BoundPdasOptions& options, Vec x,
+                        std::vector<char>& active, BoundPdasResult* result) {
+  PetscFunctionBeginUser;
+  PC amg = p1_level_preconditioner(fine.inner);
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(qp.A));
+  long long n_bounds = 0;
+  for (PetscInt column : qp.coarse_bounded) n_bounds += column >= 0;
+  if (!amg || !fine.P1_operator || count_over_ranks(n_bounds, comm) == 0) PetscFunctionReturn(0);
+  Stopwatch clock;
+  LevelProblem level;
+  level.A = fine.P1_operator;
+  PetscCall(MatCreateVecs(level.A, &level.b, nullptr));
+  PetscCall(MatMultTranspose(qp.coarse_interpolation, qp.b, level.b));
+  PetscInt first = 0, end = 0;
+  PetscCall(MatGetOwnershipRange(level.A, &first, &end));
+  std::vector<std::pair<PetscInt, double>> bounds;
+  for (std::size_t i = 0; i < qp.bounded.size(); ++i) {
+    const PetscInt column = qp.coarse_bounded[i];
+    // A candidate vertex's P1 columns are on its own rank (the seam with the data's owner).
+    if (column >= first && column < end) bounds.emplace_back(column, qp.upper[i]);
+  }
+  std::sort(bounds.begin(), bounds.end());
+  for (const auto& [column, upper] : bounds) {
+    level.bounded.push_back(column);
+    level.upper.push_back(upper);
+  }
+  LevelSolver solver;
+  PetscCall(solver.create(level.A, amg, "contactqp_p1_"));
+  LoopSettings settings;
+  settings.tol = kP1Tolerance;
+  settings.max_iterations = options.max_iterations;
+  settings.inexact = true;
+  settings.final_steps = false;
+  // The P1 problem's own residual: primal violation, negative multipliers and complementarity
+  // over its scales, as the fine one's but on P1 data.
+  settings.residual = [&level, comm](Vec v, const std::vector<double>& mu) {
+    PetscInt start = 0;
+    MatGetOwnershipRange(level.A, &start, nullptr);
+    const PetscScalar* xs = nullptr;
+    VecGetArrayRead(v, &xs);
+    double violation = 0, negative = 0, complementarity = 0, length = 0, force = 0;
+    for (std::size_t i = 0; i < level.bounded.size(); ++i) {
+      const double slack = xs[level.bounded[i] - start] - level.upper[i];
+      violation = std::max(violation, slack);
+      negative = std::max(negative, -mu[i]);
+      complementarity = std::max(complementarity, std::abs(std::max(mu[i], 0.0) * slack));
+      length = std::max(length, std::abs(xs[level.bounded[i] - start]));
+      force = std::max(force, std::abs(mu[i]));
+    }
+    VecRestoreArrayRead(v, &xs);
+    PetscReal b_norm = 0, v_norm = 0;
+    VecNorm(level.b, NORM_INFINITY, &b_norm);
+    VecNorm(v, NORM_INFINITY, &v_norm);
+    double values[5] = {violation, negative, complementarity, std::max(length, static_cast<double>(v_norm)),
+                        std::max(force, static_cast<double>(b_norm))};
+    MPI_Allreduce(MPI_IN_PLACE, values, 5, MPI_DOUBLE, MPI_MAX, comm);
+    const double L = values[3] > 0 ? values[3] : 1.0, F = values[4] > 0 ? values[4] : 1.0;
+    return std::max({values[0] / L, values[1] / F, values[2] / (F * L)});
+  };
+  Vec x1 = nullptr;
+  PetscCall(VecDuplicate(level.b, &x1));
+  PetscCall(VecSet(x1, 0.0));
+  std::vector<char> active1(level.bounded.size(), 0);
+  std::vector<double> mu1;
+  LoopOutcome outcome;
+  PetscCall(active_set_loop(level, solver, nullptr, settings, x1, active1, mu1, &outcome));
+  result->p1_steps = outcome.steps;
+  result->p1_krylov_iterations = outcome.krylov_iterations;
+  if (outcome.status == Status::Converged || outcome.status == Status::MaxIterations) {
+    // The fine iterate and active set: where the interpolated P1 answer reaches a bound (the
+    // candidate vertices that hold it, exactly; mid-edge nodes between them, which the P1
+    // chord pushes through the bound).
+    PetscCall(MatMult(qp.coarse_interpolation, x1, x));
+    PetscInt fine_first = 0;
+    PetscCall(MatGetOwnershipRange(qp.A, &fine_first, nullptr));
+    const PetscScalar* xs = nullptr;
+    PetscCall(VecGetArrayRead(x, &xs));
+    for (std::size_t i = 0; i < qp.bounded.size(); ++i) {
+      const double value = xs[qp.bounded[i] - fine_first], upper = qp.upper[i];
+      active[i] = value - upper >= -kRoundOff * std::max(std::abs(value), std::abs(upper));
+    }
+    PetscCall(VecRestoreArrayRead(x, &xs));
+  }
+  PetscCall(VecDestroy(&x1));
+  PetscCall(VecDestroy(&level.b));
+  result->p1_seconds = clock.seconds();
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+BoundPdasResult::BoundPdasResult(BoundPdasResult&& other) noexcept { *this = std::move(other); }
+
+BoundPdasResult& BoundPdasResult::operator=(BoundPdasResult&& other) noexcept {
+  if (this == &other) return *this;
+  if (v && !petsc_finalized()) VecDestroy(&v);
+  status = other.status;
+  message = std::move(other.message);
+  v = other.v;
+  other.v = nullptr;
+  mu = std::move(other.mu);
+  iterations = other.iterations;
+  krylov_iterations = other.krylov_iterations;
+  linear_solves = other.linear_solves;
+  p1_steps = other.p1_steps;
+  p1_krylov_iterations = other.p1_krylov_iterations;
+  preconditioner_setups = other.preconditioner_setups;
+  active = other.active;
+  residual = other.residual;
+  setup_seconds = other.setup_seconds;
+  iterate_seconds = other.iterate_seconds;
+  p1_seconds = other.p1_seconds;
+  update_seconds = other.update_seconds;
+  multigrid = other.multigrid;
+  method = std::move(other.method);
+  solver_of_A = std::move(other.solver_of_A);
+  return *this;
+}
+
+BoundPdasResult::~BoundPdasResult() {
+  if (v && !petsc_finalized()) VecDestroy(&v);
+}
+
+PetscErrorCode solve_bound_pdas(const PetscBoundQp& qp, const BoundPdasOptions& options, BoundPdasResult* result,
+                                bool* options_error) {
+  PetscFunctionBeginUser;
+  *options_error = false;
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(qp.A));
+  auto fine = std::make_shared<FineState>();
+  fine->tol = options.tol;
+  Stopwatch clock;
+  // The hierarchy on A, once; its finest smoother works on the step's W (the shell), its
+  // Jacobi and the rest on A.
+  PetscCall(fine->level.mask.create(qp.A));
+  PetscCall(PCCreate(comm, &fine->inner));
+  PetscCall(PCSetOperators(fine->inner, fine->level.mask.op(), qp.A));
+  PetscCall(PCSetUseAmat(fine->inner, PETSC_TRUE));
+  MultigridData data;
+  data.A = qp.A;
+  data.coarse_interpolation = qp.coarse_interpolation;
+  data.coarse_modes = qp.coarse_modes;
+  if (PetscErrorCode code = set_up_multigrid(fine->inner, data, &fine->P1_operator, &result->multigrid)) {
+    *options_error = true;
+    PetscFunctionReturn(code);
+  }
+  result->preconditioner_setups = 1;
+  // The finest level's Chebyshev bounds from A itself (an empty mask), so that they hold for
+  // every W: one application now, before any row is fixed.
+  {
+    Vec r = nullptr, z = nullptr;
+    PetscCall(MatCreateVecs(qp.A, &z, &r));
+    PetscCall(VecSet(r, 1.0));
+    PetscCall(PCApply(fine->inner, r, z));
+    PetscCall(VecDestroy(&r));
+    PetscCall(VecDestroy(&z));
+  }
+  // The loop's KSP on W, around the masked hierarchy (LevelSolver::create without a second
+  // mask: the fine level's mask is the one the hierarchy's smoother sees).
+  {
+    LevelSolver& level = fine->level;
+    PetscCall(MatNorm(qp.A, NORM_INFINITY, &level.rule.A_norm));
+    PetscCall(KSPCreate(comm, &level.ksp));
+    PetscCall(KSPSetType(level.ksp, KSPCG));
+    PetscCall(KSPSetOperators(level.ksp, level.mask.op(), qp.A));
+    PetscCall(KSPSetNormType(level.ksp, KSP_NORM_UNPRECONDITIONED));
+    PetscCall(KSPSetTolerances(level.ksp, 0.0, 0.0, PETSC_DEFAULT, kMaxKrylovIterations));
+    PetscCall(KSPConvergedDefaultCreate(&level.rule.default_test));
+    PetscCall(KSPSetConvergenceTest(level.ksp, StoppingRule::test, &level.rule, nullptr));
+    PC outer = nullptr;
+    PetscCall(KSPGetPC(level.ksp, &outer));
+    PetscCall(level.mask.wrap(outer, fine->inner));
+    PetscCall(PCSetOptionsPrefix(outer, "contactqp_masked_"));
+    if (PetscErrorCode code = KSPSetFromOptions(level.ksp)) {
+      *options_error = true;
+      PetscFunctionReturn(code);
+    }
+    PetscCall(KSPSetInitialGuessNonzero(level.ksp, PETSC_TRUE));
+  }
+  if (options.truncate) PetscCall(fine->truncation.collect(fine->inner, qp.A));
+  result->setup_seconds = clock.seconds();
+
+  clock.restart();
+  PetscCall(MatCreateVecs(qp.A, &result->v, nullptr));
+  PetscCall(VecSet(result->v, 0.0));
+  std::vector<char> active(qp.bounded.size(), 0);
+  if (options.p1_start && qp.coarse_interpolation && qp.coarse_bounded.size() == qp.bounded.size())
+    PetscCall(p1_start(qp, *fine, options, result->v, active, result));
+
+  LevelProblem level;
+  level.A = qp.A;
+  level.b = qp.b;
+  level.bounded = qp.bounded;
+  level.upper = qp.upper;
+  LoopSettings settings;
+  settings.tol = options.tol;
+  settings.max_iterations = options.max_iterations;
+  settings.inexact = options.inexact;
+  settings.residual = options.residual;
+  LoopOutcome outcome;
+  PetscCall(active_set_loop(level, fine->level, fine->truncation.active() ? &fine->truncation : nullptr, settings,
+                            result->v, active, result->mu, &outcome));
+  for (double& value : result->mu) value = std::max(value, 0.0);
+  result->status = outcome.status;
+  result->message = outcome.message;
+  result->iterations = outcome.steps;
+  result->krylov_iterations = outcome.krylov_iterations;
+  result->linear_solves = outcome.steps;
+  result->residual = outcome.residual;
+  result->active = count_over_ranks(std::count(active.begin(), active.end(), 1), comm);
+  result->update_seconds = fine->truncation.update_seconds();
+  result->iterate_seconds = clock.seconds();
+  result->method = "pdas, cg + " + result->multigrid.method + (result->p1_steps > 0 ? ", P1 start" : "") +
+                   (fine->truncation.active() ? ", truncated" : "");
+  result->solver_of_A = std::make_shared<KeptSolverOfA>(fine);
+  PetscFunctionReturn(0);
+}
+
+}  // namespace contactqp::detail
