@@ -37,6 +37,8 @@ class Ssn {
     // One d per tangential block, so that the projection onto the disc stays isotropic.
     const int nd = p_.n_directions;
     fixed_slip_.assign(p_.m, false);
+    zero_row_.assign(M_, false);
+    for (int j = p_.m; j < M_; ++j) zero_row_[j] = problem.S(j, j) == 0;
     for (int i = 0; i < p_.m; ++i) {
       const int base = p_.m + i * nd;
       const double d = d_.segment(base, nd).maxCoeff();
@@ -68,6 +70,7 @@ class Ssn {
   int M_;
   VectorXd d_;
   std::vector<bool> fixed_slip_;  // per node: zero tangential rows
+  std::vector<bool> zero_row_;    // per row of y: a tangential row of T that is zero
   FrictionSsnResult result_;
   VectorXd best_y_, best_w_;
 };
@@ -106,6 +109,9 @@ Linearisation Ssn::linearise(const VectorXd& y, const VectorXd& w) const {
     } else if (norm <= r) {
       lin.state[m + i] = 1;  // stick: every direction free, no slip
       for (int k = 0; k < nd; ++k) {
+        // A zero row of T (one prescribed tangential DOF, on a symmetry plane) moves nothing:
+        // its λ_T component stays 0, and the system stays positive definite.
+        if (zero_row_[base + k]) continue;
         Direction e;
         e.j[0] = base + k;
         e.c[0] = 1;
