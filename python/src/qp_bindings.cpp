@@ -49,6 +49,7 @@ QuadraticProgram make_qp(py::handle K_in, py::handle f_in, py::handle B_in, py::
   qp.f = to_vector(f_in, "f");
   const long n = qp.K.rows();
   if (qp.K.cols() != n) throw InputError("K", "has shape " + shape(qp.K) + ": must be square");
+  if (n == 0) throw InputError("K", "has shape 0 x 0: a problem needs at least one unknown");
   if (qp.f.size() != n)
     throw InputError("f", "has " + std::to_string(qp.f.size()) + " entries, K has " + std::to_string(n) + " rows");
   if (B_in.is_none() != g_in.is_none())

@@ -52,7 +52,7 @@ SOLVE_SCENE_ARGUMENTS = [
     ("backend", {"backend": ["uzawa"]}),
     ("backend", {"backend": 0}),
     ("backend_options", {"backend_options": "print_level=5"}),
-    ("backend_options", {"backend_options": {1: 2}}),
+    ("backend option 1", {"backend_options": {1: 2}}),  # uzawa takes none
     ("backend_options.print_level", {"backend": "ipopt", "backend_options": {"print_level": None}}),
     ("observer", {"observer": 3}),
 ]
@@ -60,7 +60,7 @@ SOLVE_SCENE_ARGUMENTS = [
 
 @pytest.mark.parametrize("field,arguments", SOLVE_SCENE_ARGUMENTS, ids=[repr(a) for _, a in SOLVE_SCENE_ARGUMENTS])
 def test_solve_scene_arguments(field, arguments):
-    if arguments.get("backend") == "ipopt" and contactqp.Backend.ipopt not in contactqp.available_backends():
+    if arguments.get("backend") == "ipopt" and contactqp.Backend.IPOPT not in contactqp.available_backends():
         pytest.skip("Ipopt not built in")
     check(field, contactqp.solve_scene, HERTZ, **arguments)
 

@@ -45,7 +45,10 @@ CoarseSpace p1_coarse_space(const Model& model) {
   std::vector<Eigen::Triplet<double>> entries;
   std::vector<char> reached(static_cast<std::size_t>(dim) * n_vertices, 0);
   auto add_block = [&](int node, int from, double weight) {
-    const Eigen::MatrixXd block = weight * frame[node].transpose() * frame[from];
+    // A vertex's own DOFs: exactly the identity (no round-off of FᵀF), so that its row of P
+    // is a single 1 and the bound form can give its columns the vertex's own variables.
+    const Eigen::MatrixXd block = node == from ? Eigen::MatrixXd::Identity(dim, dim).eval()
+                                               : (weight * frame[node].transpose() * frame[from]).eval();
     for (int r = 0; r < dim; ++r) {
       const int row = model.free_index[dim * node + r];
       if (row < 0) continue;

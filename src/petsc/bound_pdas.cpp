@@ -17,9 +17,8 @@ namespace contactqp::detail {
 namespace {
 
 // The inner rule of the PETSc solver of K (docs/linear-solvers.md): ‖r‖₂ ≤ 1e-3 · tol · F, so
-// that stationarity stays a tenth of tol; and its round-off floor.
+// that stationarity stays a tenth of tol (its round-off floor: ksp_helpers.hpp).
 constexpr double kInnerFraction = 1e-3;
-constexpr double kRoundOff = 100 * 2.220446049250313e-16;
 constexpr PetscInt kMaxKrylovIterations = 10000;
 // A loose step reduces its own initial residual tenfold (never below the final rule): the
 // active set's next guess needs the step's direction, not its digits. Measured on the spheres:
@@ -44,16 +43,8 @@ struct StoppingRule {
     StoppingRule& rule = *static_cast<StoppingRule*>(context);
     PetscCall(KSPConvergedDefault(ksp, it, rnorm, reason, rule.default_test));
     if (it == 0) rule.initial = rnorm;
-    if (*reason != KSP_CONVERGED_ITERATING) PetscFunctionReturn(0);
-    double target = rule.reduction > 0 ? std::max(rule.target, rule.reduction * rule.initial) : rule.target;
-    if (rnorm > target && rnorm <= 1e6 * target) {
-      Vec x = nullptr;
-      PetscReal x_norm = 0;
-      PetscCall(KSPBuildSolution(ksp, nullptr, &x));
-      PetscCall(VecNorm(x, NORM_INFINITY, &x_norm));
-      target = std::max(target, kRoundOff * rule.A_norm * x_norm);
-    }
-    if (rnorm <= target) *reason = KSP_CONVERGED_ATOL;
+    const double target = rule.reduction > 0 ? std::max(rule.target, rule.reduction * rule.initial) : rule.target;
+    PetscCall(inner_stopping_rule(ksp, rnorm, target, rule.A_norm, reason));
     PetscFunctionReturn(0);
   }
 };

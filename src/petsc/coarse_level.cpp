@@ -14,7 +14,8 @@ CoarseLevel::~CoarseLevel() {
   if (modes_) MatNullSpaceDestroy(&modes_);
 }
 
-PetscErrorCode CoarseLevel::create(const CoarseLevelInput& input, const RowOrder& order, PetscInt first, PetscInt end) {
+PetscErrorCode CoarseLevel::create(const CoarseLevelInput& input, const RowOrder& order, PetscInt first, PetscInt end,
+                                   Mat A) {
   PetscFunctionBeginUser;
   const Eigen::SparseMatrix<double>& P = *input.interpolation;
   const std::vector<int>& vertex_of = *input.column_vertex;
@@ -81,7 +82,9 @@ PetscErrorCode CoarseLevel::create(const CoarseLevelInput& input, const RowOrder
     }
   PetscCall(MatCreate(comm, &P_));
   PetscCall(MatSetSizes(P_, end - first, local_columns, n, n_columns));
-  PetscCall(MatSetType(P_, MATAIJ));
+  MatType type = nullptr;
+  PetscCall(MatGetType(A, &type));
+  PetscCall(MatSetType(P_, type));
   if (blocks) PetscCall(MatSetBlockSizes(P_, 1, input.block_size));
   PetscCall(MatSeqAIJSetPreallocation(P_, 0, diagonal.data()));
   PetscCall(MatMPIAIJSetPreallocation(P_, 0, diagonal.data(), 0, off_diagonal.data()));

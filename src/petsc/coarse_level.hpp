@@ -35,8 +35,9 @@ class CoarseLevel {
   // Builds P with A's row layout (rows [first, end) on this rank, in `order`) and columns
   // owned vertex by vertex by the rank that owns the vertex's own rows, so that the Galerkin
   // product PᵀAP stays mostly local; the column block size is `block_size` when every vertex
-  // has that many columns. Collective; every rank passes the whole input.
-  PetscErrorCode create(const CoarseLevelInput& input, const RowOrder& order, PetscInt first, PetscInt end);
+  // has that many columns; of A's matrix type (MatPtAP needs the two alike). Collective; every
+  // rank passes the whole input.
+  PetscErrorCode create(const CoarseLevelInput& input, const RowOrder& order, PetscInt first, PetscInt end, Mat A);
 
   Mat interpolation() const { return P_; }
   MatNullSpace modes() const { return modes_; }

@@ -1,16 +1,40 @@
 // Small pieces the room's KSP solvers share (petsc_solver.cpp, petsc_bound_qp.cpp,
-// bound_pdas.cpp): the words of a failed solve, and a distributed vector back on every rank.
+// bound_pdas.cpp): their stopping rule, the words of a failed solve, and a distributed vector
+// back on every rank.
 #pragma once
 
 #include <petscksp.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <sstream>
 #include <string>
 
 #include "petsc_matrix.hpp"
 
 namespace contactqp::detail {
+
+// Round-off: a residual this small relative to ‖A‖∞‖x‖∞ is as good as a backward-stable direct
+// solve gets, whatever the rule asks (CG then stagnates instead of converging).
+constexpr double kRoundOff = 100 * 2.220446049250313e-16;
+
+// The stopping rule every CG solve of the room ends with, once KSPConvergedDefault has had its
+// say (divergence, -ksp_max_it, a user's -ksp_rtol or -ksp_atol): converged when ‖r‖ ≤ target,
+// or ≤ the round-off floor kRoundOff·‖A‖∞·‖x‖∞. The floor needs ‖x‖∞ (free for CG: its iterate
+// is stored), so it is looked at only near the target.
+inline PetscErrorCode inner_stopping_rule(KSP ksp, PetscReal rnorm, double target, double A_norm,
+                                          KSPConvergedReason* reason) {
+  if (*reason != KSP_CONVERGED_ITERATING) return 0;
+  if (rnorm > target && rnorm <= 1e6 * target) {
+    Vec x = nullptr;
+    PetscReal x_norm = 0;
+    PetscCall(KSPBuildSolution(ksp, nullptr, &x));
+    PetscCall(VecNorm(x, NORM_INFINITY, &x_norm));
+    target = std::max(target, kRoundOff * A_norm * x_norm);
+  }
+  if (rnorm <= target) *reason = KSP_CONVERGED_ATOL;
+  return 0;
+}
 
 // A number in a message, to four significant digits ("2.9e-11", not to_string's "0.000000").
 inline std::string number_text(double x) {

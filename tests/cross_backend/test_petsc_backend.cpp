@@ -45,10 +45,11 @@ TEST_CASE("petsc agrees with active_set on the shipped scenes, 2D and 3D", "[cro
   if (!petsc_built_in()) return;
   // disc-in-vgroove: two obstacles, nodes with a row for each (a per-node change of variables
   // that is not orthogonal); block-on-circle and strip-liftoff: rows that open; hertz-sphere:
-  // 3D, six rigid-body modes (coarser, order 1, to keep the test short).
+  // 3D, six rigid-body modes (coarser, order 1, to keep the test short); hertz-order2: 6-node
+  // triangles, so the P1 level, its start and its truncated hierarchy (0.1 s).
   const std::string scene =
       GENERATE(as<std::string>{}, "scenes/hertz.json", "scenes/disc-in-vgroove.json", "scenes/block-on-circle.json",
-               "scenes/strip-liftoff.json", "scenes/hertz-sphere.json");
+               "scenes/strip-liftoff.json", "scenes/hertz-sphere.json", "scenes/hertz-order2.json");
   const char* patch = scene == "scenes/disc-in-vgroove.json" ? R"({"body": {"mesh": {"contact_size": 0.01}}})"
                       : scene == "scenes/hertz-sphere.json"
                           ? R"({"body": {"mesh": {"contact_size": 0.03, "order": 1}}})"
@@ -77,6 +78,10 @@ TEST_CASE("petsc agrees with active_set on the shipped scenes, 2D and 3D", "[cro
   CHECK(r.K_factor->statistics().name == "petsc");
   CHECK(r.warnings.empty());
   CHECK(r.diagnostics.at("preconditioner_setups") == 1);  // one hierarchy, kept across the steps
+  if (scene == "scenes/hertz-order2.json") {
+    CHECK_THAT(r.message, Catch::Matchers::Contains("P1 level") && Catch::Matchers::Contains("P1 start"));
+    CHECK(r.diagnostics.at("p1_start_steps") >= 1);
+  }
 
   // The loop with a set-up per step (hierarchy=fresh): the same answer.
   SolveOptions fresh = petsc_options(tol);

@@ -65,9 +65,9 @@ std::vector<BadScene> bad_scenes() {
       {patch(R"({"load": {"value": [0.1, -0.01]}})"), "body.symmetry"},
       // Issue 8: shapes, Gmsh files, loads, obstacles, transform.
       {patch(R"({"body": {"shape": "mesh"}})"), "body.file"},
-      {patch(R"({"body": {"shape": "mesh", "file": "disc.stl"}})"), "body.file"},
-      {patch(R"({"body": {"shape": "mesh", "file": "no_such_disc.msh"}})"), "body.file"},
-      {patch(R"({"body": {"shape": "rectangle", "width": 0, "height": 1}})"), "body.width = 0"},
+      {patch(R"({"body": {"shape": "mesh", "file": "disc.stl", "radius": null, "mesh": null}})"), "body.file"},
+      {patch(R"({"body": {"shape": "mesh", "file": "no_such_disc.msh", "radius": null, "mesh": null}})"), "body.file"},
+      {patch(R"({"body": {"shape": "rectangle", "width": 0, "height": 1, "radius": null}})"), "body.width = 0"},
       {patch(R"({"body": {"shape": "rectangle", "width": 1}})"), "body.height"},
       {patch(R"({"body": {"shape": "rectangel"}})"), "did you mean \"rectangle\""},
       {patch(

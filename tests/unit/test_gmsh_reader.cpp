@@ -106,11 +106,11 @@ TEST_CASE("defective or unsupported files are errors naming the file", "[unit][g
   };
   const Case cases[] = {
       {"degenerate.msh", square_msh22("1 3 4", "5 2 0 0\n", "4 2 2 2 1 2 1 5\n", 1, 1), "element 4 is degenerate"},
-      {"quads.msh", square_msh22("1 3 4", "", "4 3 2 2 1 1 2 3 4\n", 0, 1), "Quadrilateral"},
-      {"garbage.msh", "this is not a mesh\n", "could not be read by Gmsh"},
+      {"quads.msh", square_msh22("1 3 4", "", "4 3 2 2 1 1 2 3 4\n", 0, 1), "4-node quadrangle elements"},
+      {"garbage.msh", "this is not a mesh\n", "is not a Gmsh mesh file"},
       {"truncated.msh", "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 1 4\n2 1 0 4\n",
-       "could not be read by Gmsh"},
-      {"empty.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n", "no triangles"},
+       "declares 4 nodes, more than its remaining"},
+      {"empty.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n", "has no $Nodes section"},
       {"lifted.msh", square_msh22("1 3 4").replace(square_msh22("1 3 4").find("3 1 1 0"), 7, "3 1 1 5"), "z = "},
       {"bad.geo", "Point(1) = {0, 0, 0\n", "could not be meshed by Gmsh"},
   };

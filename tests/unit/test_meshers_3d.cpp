@@ -470,13 +470,14 @@ TEST_CASE("tetrahedral .msh defects and mixed orders are errors naming the file 
       {"inverted.msh", msh22(cube, {"1 4 2 1 1 1 2 4 5", "2 4 2 1 1 2 3 4 7", "3 4 2 1 1 2 4 7 6"}),
        "element 3 is inverted"},
       {"flat.msh", msh22(cube, {"1 4 2 1 1 1 2 4 5", "2 4 2 1 1 1 2 3 4"}), "element 2 is degenerate"},
-      {"hexahedron.msh", msh22(cube, {"1 5 2 1 1 1 2 3 4 5 6 7 8"}), "Hexahedron"},
+      {"hexahedron.msh", msh22(cube, {"1 5 2 1 1 1 2 3 4 5 6 7 8"}), "volume 1 holds 8-node hexahedron elements"},
       {"mixed.msh", msh22(kTet10Nodes, {"1 4 2 1 1 1 2 3 4", "2 11 2 1 1 1 2 3 4 5 6 7 8 9 10"}),
-       "element 2 is a Tetrahedron 10 among Tetrahedron 4 elements"},
-      {"wrong-face.msh", msh22(cube, {"1 4 2 1 1 1 2 4 5", "2 9 2 2 2 1 2 4 3 3 3"}), "Triangle 6"},
-      // The same Gmsh limitation in 2D: one surface with 3- and 6-node triangles.
+       "it mixes 4-node and 10-node tetrahedra"},
+      {"wrong-face.msh", msh22(cube, {"1 4 2 1 1 1 2 4 5", "2 9 2 2 2 1 2 4 3 3 3"}),
+       "physical surface \"2\" holds 6-node triangle elements"},
+      // The same in 2D: one surface with 3- and 6-node triangles.
       {"mixed-2d.msh", msh22(kTet10Nodes, {"1 2 2 1 1 1 2 3", "2 9 2 1 1 1 2 3 5 6 7"}),
-       "element 2 is a Triangle 6 among Triangle 3 elements"},
+       "it mixes 3-node and 6-node triangles"},
   };
   for (const Case& c : cases) {
     CAPTURE(c.name);

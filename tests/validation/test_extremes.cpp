@@ -176,7 +176,12 @@ TEST_CASE("units: E × 1e±9 and lengths × 1e±3 give the same scaled answer on
       const Run other = run(scene.dump(), backend, 1e-8, source);
       REQUIRE(base.result.status == Status::Converged);
       REQUIRE(other.result.status == Status::Converged);
-      CHECK(other.result.iterations == base.result.iterations);
+      // petsc's loose steps stop on a residual reduction of an iterative solve, whose round-off
+      // does not scale with the units: on the nearly incompressible case (ν = 0.499) E × 1e-9
+      // moves one active-set change past a loose step (4 steps against 3). The answer is still
+      // checked to 1e-6 below.
+      const int allowed = backend == Backend::Petsc ? 1 : 0;
+      CHECK(std::abs(other.result.iterations - base.result.iterations) <= allowed);
       CHECK(relative_error(other.contact.half_width / l, base.contact.half_width) <= 1e-6);
       CHECK(relative_error(other.contact.max_pressure / e, base.contact.max_pressure) <= 1e-6);
       CHECK(relative_error(other.contact.total_force / (e * l), base.contact.total_force) <= 1e-6);
