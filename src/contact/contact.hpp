@@ -106,9 +106,12 @@ void remove_prescribed_candidates(Model& model);
 const FrictionSpec* friction_of(const Model& model, const Candidate& candidate);
 // The row's unit normal (from the obstacle or the other body towards the node, global axes)
 // and its dim − 1 unit tangents: t = (n_y, −n_x) in 2D; in 3D t1 the scene's own x axis
-// (its y axis where n lies near x) across n, and t2 = n × t1.
+// (its y axis where n lies near x) across n, and t2 = n × t1. At a node with a prescribed
+// direction within 0.1 of the plane across n (a symmetry plane's normal) that direction is a
+// tangent (t2 in 3D, t1 = t2 × n normalised), so that its row vanishes once the prescribed
+// DOFs are eliminated; it leans off n's plane by the mesh normal's error only.
 Eigen::Vector3d row_normal(const Model& model, const Candidate& candidate);
-std::vector<Eigen::Vector3d> row_tangents(const Model& model, const Eigen::Vector3d& normal);
+std::vector<Eigen::Vector3d> row_tangents(const Model& model, const Candidate& candidate);
 // The tangential rows over every DOF (free and prescribed), in the DOFs' frames: row
 // i·(dim − 1) + k is t_kᵀ(u_i − Σ_j N_j u_j) for candidate i.
 struct TangentialRow {

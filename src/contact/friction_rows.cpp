@@ -4,6 +4,7 @@
 // end of the last step, with the prescribed displacements' part of this step moved into it (as
 // g holds theirs), so that T u − offset is the step's slip.
 #include <Eigen/Geometry>
+#include <cmath>
 #include <set>
 
 #include "contact.hpp"
@@ -37,8 +38,48 @@ Eigen::Vector3d row_normal(const Model& model, const Candidate& c) {
   return project(model.scene.obstacles[c.obstacle], model.mesh.nodes[c.node]).normal;
 }
 
-std::vector<Eigen::Vector3d> row_tangents(const Model& model, const Eigen::Vector3d& n) {
-  if (model.dim == 2) return {Eigen::Vector3d(n.y(), -n.x(), 0.0)};
+namespace {
+
+// How far from the row's plane a prescribed direction may lean and still be taken as a
+// tangent: a symmetry plane's normal leans off the mesh's normal at a node on the plane by the
+// discretisation only (the normal averages the faces on one side of it), a few degrees at most.
+constexpr double kTangentialLean = 0.1;
+
+// The node's prescribed directions (global axes) that lie nearly in the plane across n.
+std::vector<Eigen::Vector3d> prescribed_tangents(const Model& model, int node, const Eigen::Vector3d& n) {
+  const int dim = model.dim;
+  const Eigen::MatrixXd frame = dof_frame(model, node);
+  std::vector<Eigen::Vector3d> along;
+  for (int k = 0; k < dim; ++k) {
+    if (model.free_index[dim * node + k] >= 0) continue;
+    Eigen::Vector3d e = Eigen::Vector3d::Zero();
+    e.head(dim) = frame.col(k);
+    if (std::abs(e.dot(n)) <= kTangentialLean) along.push_back(e);
+  }
+  return along;
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector3d> row_tangents(const Model& model, const Candidate& c) {
+  const Eigen::Vector3d n = row_normal(model, c);
+  // A node on a symmetry plane cannot move across it: that direction is a tangent, so that,
+  // where the partner lies on the plane too, the row along it has entries on prescribed DOFs
+  // only and drops out of T exactly (the solvers keep a zero row's λ_T at 0). A tangent of the
+  // mesh's normal, which leans off the plane, left a tiny row that is a multiple of the normal
+  // row on the free DOFs: a sticking node's Newton system was singular, and active_set ran
+  // gradient steps only (scenes/mindlin-spheres.json's plane y = 0, Coulomb's press step).
+  const std::vector<Eigen::Vector3d> prescribed = prescribed_tangents(model, c.node, n);
+  if (model.dim == 2) {
+    const Eigen::Vector3d t(n.y(), -n.x(), 0.0);
+    if (prescribed.empty()) return {t};
+    return {prescribed.front().dot(t) < 0 ? Eigen::Vector3d(-prescribed.front()) : prescribed.front()};
+  }
+  if (prescribed.size() >= 2) return {prescribed[0], prescribed[1]};  // on two planes: no free slip
+  if (prescribed.size() == 1) {
+    const Eigen::Vector3d& t2 = prescribed.front();
+    return {t2.cross(n).normalized(), t2};  // t1 ⊥ n and t2; n × t1 is t2 up to its lean
+  }
   // The scene's own x axis (turned by its transform) across n; its y axis where n is near x.
   Eigen::Vector3d t1 = model.rotation.col(0) - model.rotation.col(0).dot(n) * n;
   if (t1.norm() < 0.5) t1 = model.rotation.col(1) - model.rotation.col(1).dot(n) * n;
@@ -50,7 +91,7 @@ std::vector<TangentialRow> tangential_rows(const Model& model) {
   const int dim = model.dim;
   std::vector<TangentialRow> rows;
   for (const Candidate& c : model.candidates) {
-    for (const Eigen::Vector3d& t : row_tangents(model, row_normal(model, c))) {
+    for (const Eigen::Vector3d& t : row_tangents(model, c)) {
       TangentialRow row;
       // t_kᵀ u_node in the node's DOF frame: the coefficients of its components are Fᵀ t.
       auto add = [&](int node, double scale) {

@@ -354,8 +354,7 @@ std::string friction_profile_csv(const RunReport& report) {
       const int i = point.row;
       const double x = dim == 2 ? point.s - centre : point.s;
       Eigen::Vector3d along = zone.resultant;
-      if (!(zone.tangential_force > 0))
-        along = detail::row_tangents(model, detail::row_normal(model, model.candidates[i])).front();
+      if (!(zone.tangential_force > 0)) along = detail::row_tangents(model, model.candidates[i]).front();
       out << point.s << ',' << point.pressure << ',' << point.force << ',';
       if (hertz) out << hertz_pressure(*hertz, x);
       out << ',' << obstacle << ',' << pair << ',' << fields.traction[i].dot(along.normalized()) << ',';

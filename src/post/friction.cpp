@@ -20,6 +20,11 @@ constexpr double kPi = 3.14159265358979323846;
 // Mindlin's traction nears the bound only like sqrt(c − r) from inside the stick zone.
 constexpr double kMoved = 1e-5;
 constexpr double kOnBound = 1e-6;
+// When every row sticks the largest slip is round-off (1e-20 on scenes/mindlin-cylinders.json
+// with μ = 100) and no scale: a row moved only if its slip is also above this fraction of the
+// largest displacement (stuck rows 1e-14, the first slipping row 4e-10 on the cylinders, whose
+// displacements are 2.5e-5).
+constexpr double kMovedOfDisplacement = 1e-8;
 
 // The friction, stick zone and Mindlin comparison of the rows `rows` (one obstacle's or pair's);
 // `profile` gives each row's coordinate, `centre` the 2D zone's centre.
@@ -70,16 +75,17 @@ FrictionFields friction_fields(const Model& model, const QuadraticProgram& qp, c
   double largest_slip = 0;
   for (int i = 0; i < m; ++i)
     if (lambda[i] > loaded) largest_slip = std::max(largest_slip, slip.segment(i * nd, nd).norm());
+  const double still = kMovedOfDisplacement * (u.size() ? u.cwiseAbs().maxCoeff() : 0.0);
   for (int i = 0; i < m; ++i) {
     const Candidate& c = model.candidates[i];
-    const std::vector<Eigen::Vector3d> t = detail::row_tangents(model, detail::row_normal(model, c));
+    const std::vector<Eigen::Vector3d> t = detail::row_tangents(model, c);
     for (int k = 0; k < nd; ++k) {
       fields.force[i] -= lambda_t[i * nd + k] * t[k];
       fields.slip[i] += slip[i * nd + k] * t[k];
     }
     fields.bound[i] = block.law == FrictionLaw::Tresca ? block.threshold[i] : block.coefficient[i] * lambda[i];
     if (!(lambda[i] > loaded)) continue;  // gap
-    const bool moved = slip.segment(i * nd, nd).norm() > kMoved * largest_slip;
+    const bool moved = slip.segment(i * nd, nd).norm() > std::max(kMoved * largest_slip, still);
     const bool on_bound =
         !(fields.bound[i] > 0) || lambda_t.segment(i * nd, nd).norm() >= (1 - kOnBound) * fields.bound[i];
     fields.state[i] = moved || on_bound ? 2 : 1;
@@ -99,7 +105,7 @@ Eigen::VectorXd friction_nodal_forces(const Model& model, const QuadraticProgram
   if (qp.friction.empty() || lambda_t.size() == 0) return force;
   for (int i = 0; i < qp.n_constraints(); ++i) {
     const Candidate& c = model.candidates[i];
-    const std::vector<Eigen::Vector3d> t = detail::row_tangents(model, detail::row_normal(model, c));
+    const std::vector<Eigen::Vector3d> t = detail::row_tangents(model, c);
     Eigen::Vector3d on_node = Eigen::Vector3d::Zero();
     for (int k = 0; k < nd; ++k) on_node -= lambda_t[i * nd + k] * t[k];
     force.segment(dim * c.node, dim) += on_node.head(dim);

@@ -116,7 +116,7 @@ TEST_CASE("a pair's rows measure the relative tangential motion of the two sides
   const int dim = a.model.dim;
   for (size_t r = 0; r < rows.size(); ++r) {
     const Candidate& c = a.model.candidates[r];
-    const Eigen::Vector3d t = detail::row_tangents(a.model, detail::row_normal(a.model, c)).front();
+    const Eigen::Vector3d t = detail::row_tangents(a.model, c).front();
     double common = 0, node_side = 0;
     for (const auto& [dof, value] : rows[r].entries) {
       common += value * (dof % dim == 0 ? 0.3 : -0.7);  // the translation (0.3, −0.7)
