@@ -2,13 +2,17 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
+#include <memory>
+#include <vector>
 
 #include "commands.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/processes.hpp"
 #include "contactqp/run.hpp"
+#include "io/temporary_file.hpp"
 #include "phase_memory.hpp"
 #include "progress.hpp"
+#include "run/phases.hpp"
 
 namespace contactqp::cli {
 
@@ -67,6 +71,7 @@ int run_solve(const SolveArguments& arguments) {
       arguments.scene_path,
       {{"--json", arguments.json_path}, {"--csv", arguments.csv_path}, {"--vtu", arguments.vtu_path}});
   require(arguments.max_elements > 0, "--max-elements", arguments.max_elements, "must be positive");
+  detail::begin_phase("read");
   Scene scene = load_scene(arguments.scene_path);
   apply_overrides(arguments, scene.solver);
 
@@ -86,11 +91,25 @@ int run_solve(const SolveArguments& arguments) {
       if (arguments.phase_memory) memory.start(phase);
     };
     report = run_scene(scene, options);
-    if (!writer) return report.result.status == Status::Converged ? 0 : 1;
     // The output files: the CSV and the ParaView file, timed as "write", then the JSON, which
-    // records that time.
+    // records that time. Each is written beside its target and renamed into place only once
+    // every rank has got that far: a rank that failed meanwhile leaves no file.
+    detail::begin_phase("write");
     progress.set("write", 0);
     if (arguments.phase_memory) memory.start("write");
+    std::vector<std::unique_ptr<detail::TemporaryFile>> staged;
+    const auto stage = [&staged](const std::string& path, const std::string& content) {
+      staged.push_back(std::make_unique<detail::TemporaryFile>(path));
+      staged.back()->write(content);
+    };
+    const auto commit = [&staged] {
+      detail::checkpoint();
+      for (const auto& file : staged) file->commit();
+    };
+    if (!writer) {
+      commit();
+      return report.result.status == Status::Converged ? 0 : 1;
+    }
     Stopwatch clock;
     const std::pair<const std::string*, std::string (*)(const RunReport&)> files[] = {
         {&arguments.csv_path, profile_csv}, {&arguments.vtu_path, vtu_document}};
@@ -98,7 +117,7 @@ int run_solve(const SolveArguments& arguments) {
     int written = 0;
     for (const auto& [path, document] : files) {
       if (path->empty()) continue;
-      write_file_atomically(*path, document(report));
+      stage(*path, document(report));
       progress.set("write", static_cast<double>(++written) / n_files);
     }
     // "write" goes before "total", which then covers it too (all but the JSON's own writing).
@@ -109,7 +128,8 @@ int run_solve(const SolveArguments& arguments) {
     timings.add("write", write_seconds);
     timings.add("total", report.timings.get("total") + write_seconds);
     report.timings = timings;
-    if (!arguments.json_path.empty()) write_file_atomically(arguments.json_path, result_json(report));
+    if (!arguments.json_path.empty()) stage(arguments.json_path, result_json(report));
+    commit();
     if (arguments.phase_memory) memory_line = memory.finish();
   }
   std::cerr << memory_line;  // after the progress line is erased

@@ -5,6 +5,7 @@
 #include "contactqp/errors.hpp"
 #include "contactqp/run.hpp"
 #include "contactqp/solve.hpp"
+#include "run/phases.hpp"
 #include "run/problem_in_parts.hpp"
 
 namespace contactqp {
@@ -13,6 +14,7 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   Stopwatch total;
   validate_options(scene.solver);  // backend options too, before the mesh is built
   const auto phase = [&options](const char* name) {
+    detail::begin_phase(name);  // where the processes of a run under mpirun agree that none failed
     if (options.on_phase) options.on_phase(name);
   };
 
