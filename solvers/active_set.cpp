@@ -11,11 +11,14 @@
 #include <cmath>
 #include <memory>
 
+#include "active_set_friction.hpp"
 #include "backend_options.hpp"
 #include "backends.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
 #include "lcp.hpp"
+#include "multiplier_set.hpp"
+#include "qp/friction_sets.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -63,8 +66,10 @@ double lower_bound_residual(const QuadraticProgram& qp, const VectorXd& lambda, 
 
 void check_active_set_options(const SolveOptions& options) { effective_options(options); }
 
-SolveResult solve_active_set(const QuadraticProgram& qp, const SolveOptions& options) {
-  const ActiveSetOptions settings = effective_options(options);
+// The frictionless problem (or one whose friction exerts no force): condense B, solve the LCP.
+SolveResult solve_condensed_lcp(const QuadraticProgram& qp, const SolveOptions& options,
+                                const ActiveSetOptions& settings) {
+  const VectorXd warm = initial_multipliers(qp, options, MultiplierSet(qp, VectorXd()));
   SolveResult result;
   const int m = qp.n_constraints();
 
@@ -106,6 +111,7 @@ SolveResult solve_active_set(const QuadraticProgram& qp, const SolveOptions& opt
   LcpOptions lcp;
   lcp.tol = options.tol;
   lcp.max_iterations = options.max_iterations;
+  lcp.start = warm;  // the last load step's λ, when given: its active set is the first guess
   lcp.residual = [&qp](const VectorXd& lambda, const VectorXd& w) { return lower_bound_residual(qp, lambda, w); };
   if (options.observer) {
     // Only for convergence studies: each iterate's u costs one solve more.
@@ -186,6 +192,14 @@ SolveResult solve_active_set(const QuadraticProgram& qp, const SolveOptions& opt
   return result;
 }
 
+SolveResult solve_active_set(const QuadraticProgram& qp, const SolveOptions& options) {
+  const ActiveSetOptions settings = effective_options(options);
+  if (!without_friction_force(qp.friction)) return solve_active_set_friction(qp, options, settings);
+  SolveResult result = solve_condensed_lcp(qp, options, settings);
+  if (!qp.friction.empty()) result.lambda_t = VectorXd::Zero(qp.friction.T.rows());
+  return result;
+}
+
 }  // namespace
 }  // namespace contactqp::detail
 
@@ -197,5 +211,6 @@ CONTACTQP_BUILTIN(active_set) {
   active_set.option_names = {"max_dense_mb"};
   active_set.check_options = check_active_set_options;
   active_set.solve = solve_active_set;
+  active_set.problem_kinds = {ProblemKind::Frictionless, ProblemKind::Tresca, ProblemKind::Coulomb};
   register_backend(active_set);
 }

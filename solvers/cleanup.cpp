@@ -40,25 +40,51 @@ void zero_separated_multipliers(const QuadraticProgram& qp, const KTimes& K_time
     if (lambda[i] != 0.0 && slack[i] > threshold) rows.push_back(i);
   if (rows.empty()) return;
 
-  // The stationarity residual r = Ku − f + Bᵀλ, and the bound each of its entries must keep:
-  // the relative residual it had, or tol, measured by the part of the force scale that the
+  // The stationarity residual r = Ku − f + Bᵀλ (+ Tᵀλ_T), and the bound each of its entries must
+  // keep: the relative residual it had, or tol, measured by the part of the force scale that the
   // zeros cannot lower (‖f‖∞, ‖Ku‖∞).
+  const bool friction = !qp.friction.empty() && result.lambda_t.size() == qp.friction.T.rows();
   const VectorXd Ku = K_times(u);
   const VectorXd Btl = qp.B.transpose() * lambda;
   VectorXd r = Ku - qp.f + Btl;
+  if (friction) r += qp.friction.T.transpose() * result.lambda_t;
   const double fixed_force = std::max(inf_norm(qp.f), inf_norm(Ku));
   const double force = std::max(fixed_force, inf_norm(Btl));
   const double bound = std::max(tol * fixed_force, force > 0 ? inf_norm(r) * fixed_force / force : 0.0);
   const RowMajorMatrix B = qp.B;
+  // Under Coulomb's law a row's λ_T lies in the disc of radius μλ_N: it goes to zero with λ_N.
+  const bool with_tangential = friction && qp.friction.law == FrictionLaw::Coulomb;
+  const RowMajorMatrix T = with_tangential ? RowMajorMatrix(qp.friction.T) : RowMajorMatrix();
+  const int nd = qp.friction.n_directions;
+  // The change of r when row i's multipliers go to zero, one (entry, change) pair per entry of r.
+  auto change_of = [&](int i) {
+    std::vector<std::pair<int, double>> change;
+    auto add = [&change](int entry, double value) {
+      for (auto& [known, sum] : change)
+        if (known == entry) {
+          sum += value;
+          return;
+        }
+      change.emplace_back(entry, value);
+    };
+    for (RowMajorMatrix::InnerIterator it(B, i); it; ++it) add(static_cast<int>(it.col()), -lambda[i] * it.value());
+    if (with_tangential)
+      for (int k = 0; k < nd; ++k)
+        for (RowMajorMatrix::InnerIterator it(T, i * nd + k); it; ++it)
+          add(static_cast<int>(it.col()), -result.lambda_t[i * nd + k] * it.value());
+    return change;
+  };
   std::sort(rows.begin(), rows.end(), [&](int a, int b) { return lambda[a] < lambda[b]; });
   int zeroed = 0;
   for (int i : rows) {
+    const std::vector<std::pair<int, double>> change = change_of(i);
     bool within = true;
-    for (RowMajorMatrix::InnerIterator it(B, i); it && within; ++it)
-      within = std::abs(r[it.col()] - lambda[i] * it.value()) <= bound;
+    for (size_t k = 0; k < change.size() && within; ++k)
+      within = std::abs(r[change[k].first] + change[k].second) <= bound;
     if (!within) continue;
-    for (RowMajorMatrix::InnerIterator it(B, i); it; ++it) r[it.col()] -= lambda[i] * it.value();
+    for (const auto& [entry, value] : change) r[entry] += value;
     lambda[i] = 0.0;
+    if (with_tangential) result.lambda_t.segment(i * nd, nd).setZero();
     ++zeroed;
   }
   if (zeroed > 0) result.diagnostics["zeroed_multipliers"] = zeroed;
@@ -69,6 +95,10 @@ bool overflows(const QuadraticProgram& qp, const KTimes& K_times, const SolveRes
   // the energy, Bᵀλ and the complementarity products must be finite too.
   if (!std::isfinite(0.5 * result.u.dot(K_times(result.u)) - qp.f.dot(result.u))) return true;
   if (!VectorXd(qp.B.transpose() * result.lambda).allFinite()) return true;
+  if (!qp.friction.empty() && result.lambda_t.size() == qp.friction.T.rows() &&
+      (!VectorXd(qp.friction.T.transpose() * result.lambda_t).allFinite() ||
+       !std::isfinite(result.lambda_t.dot(qp.friction.offset))))
+    return true;
   const VectorXd products = result.lambda.cwiseProduct(VectorXd(qp.B * result.u - qp.g));
   return !products.allFinite() || !std::isfinite(result.lambda.dot(qp.g));
 }

@@ -26,6 +26,10 @@
 #include "backend_options.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/processes.hpp"
+#include "coulomb_fixed_point.hpp"
+#include "ipopt_friction.hpp"
+#include "multiplier_set.hpp"
+#include "qp/friction_sets.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -44,14 +48,12 @@ std::mutex& ipopt_mutex() {
 constexpr double kNoBound = 1e300;
 
 // The QP as Ipopt's TNLP. The sparsity patterns are fixed here, once.
-class QpNlp : public Ipopt::TNLP {
+class QpNlp : public ContactNlp {
  public:
   QpNlp(const QuadraticProgram& qp, const SolveOptions& options)
-      : qp_(qp), K_lower_(qp.K.triangularView<Eigen::Lower>()), observer_(options.observer) {}
-
-  // The solution Ipopt reported last (x and its constraint multipliers).
-  VectorXd u, lambda;
-  bool has_solution = false;
+      : qp_(qp), K_lower_(qp.K.triangularView<Eigen::Lower>()), observer_(options.observer) {
+    n_inequalities = qp.n_constraints();
+  }
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag, IndexStyleEnum& index_style) override {
     n = qp_.n_dofs();
@@ -137,23 +139,9 @@ class QpNlp : public Ipopt::TNLP {
     return true;
   }
 
-  void disable_observer() { observe_ = false; }
+  void disable_observer() override { observe_ = false; }
 
  private:
-  // Writes the pattern (first call, values == null) or the values of a sparse matrix.
-  static void copy_entries(const SparseMatrix& A, Index* rows, Index* cols, Number* values, double factor) {
-    Index k = 0;
-    for (int j = 0; j < A.outerSize(); ++j)
-      for (SparseMatrix::InnerIterator it(A, j); it; ++it, ++k) {
-        if (values) {
-          values[k] = factor * it.value();
-        } else {
-          rows[k] = static_cast<Index>(it.row());
-          cols[k] = static_cast<Index>(it.col());
-        }
-      }
-  }
-
   const QuadraticProgram& qp_;
   const SparseMatrix K_lower_;
   std::function<void(int, const VectorXd&, const VectorXd&)> observer_;
@@ -219,8 +207,13 @@ bool changes_internal_scaling(const std::string& key) {
 
 // Our settings first, then the user's (which win). Must happen before Initialize(), which
 // reads print_level to set up the console.
+// `nlp` is the problem Ipopt will solve (null when only the options are checked).
 void configure(Ipopt::IpoptApplication& app, const QuadraticProgram& qp, const SolveOptions& options,
-               const OptionMap& user) {
+               const OptionMap& user, const ContactNlp* nlp) {
+  // The frictional dual (ipopt_friction.hpp) has n linear equalities in force units and, in 3D,
+  // quadratic disc constraints whose Jacobian and multiplier-weighted Hessian change.
+  const bool dual = nlp && !dynamic_cast<const QpNlp*>(nlp);
+  const bool curved = dual && qp.friction.n_directions == 2;
   Ipopt::OptionsList& list = *app.Options();
   // Never read ./ipopt.opt from whatever directory the program runs in.
   list.SetStringValue("option_file_name", "");
@@ -228,9 +221,9 @@ void configure(Ipopt::IpoptApplication& app, const QuadraticProgram& qp, const S
     list.SetIntegerValue("print_level", 0);
     list.SetStringValue("sb", "yes");  // the banner, printed even at print_level 0
   }
-  list.SetStringValue("hessian_constant", "yes");
+  list.SetStringValue("hessian_constant", curved ? "no" : "yes");
   list.SetStringValue("jac_c_constant", "yes");
-  list.SetStringValue("jac_d_constant", "yes");
+  list.SetStringValue("jac_d_constant", curved ? "no" : "yes");
   // The default 1e-8 relaxes g to g + 1e-8·max(1, |g|), which moves the solution by as much.
   list.SetNumericValue("bound_relax_factor", 0.0);
   // solve() has already scaled the QP to numbers of order one; Ipopt's gradient-based scaling
@@ -253,8 +246,9 @@ void configure(Ipopt::IpoptApplication& app, const QuadraticProgram& qp, const S
   auto positive = [](double x) { return std::max(x, std::numeric_limits<double>::min()); };
   list.SetNumericValue("tol", tol);
   list.SetNumericValue("dual_inf_tol", positive(tol * F0));
-  list.SetNumericValue("constr_viol_tol", positive(tol * L0));
-  list.SetNumericValue("compl_inf_tol", positive(tol / std::max(1, qp.n_constraints()) * F0 * L0));
+  list.SetNumericValue("constr_viol_tol", positive(tol * (dual ? F0 : L0)));  // the dual's rows are forces
+  const int inequalities = nlp ? nlp->n_inequalities : qp.n_constraints();
+  list.SetNumericValue("compl_inf_tol", positive(tol / std::max(1, inequalities) * F0 * L0));
   // Stopping at a merely "acceptable" point after a few slow iterations would return
   // something less accurate than asked for: only the requested tolerances count.
   list.SetIntegerValue("acceptable_iter", 0);
@@ -321,11 +315,11 @@ Outcome outcome_of(Ipopt::ApplicationReturnStatus code) {
   return {S::NumericalError, "an unknown return status", "Ipopt returned a code this version does not know"};
 }
 
-Ipopt::SmartPtr<Ipopt::IpoptApplication> configured_application(const QuadraticProgram& qp,
-                                                                const SolveOptions& options) {
+Ipopt::SmartPtr<Ipopt::IpoptApplication> configured_application(const QuadraticProgram& qp, const SolveOptions& options,
+                                                                const ContactNlp* nlp = nullptr) {
   // Without the console journal nothing at all can be printed: keep it only when verbose.
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = new Ipopt::IpoptApplication(options.verbose);
-  configure(*app, qp, options, options_for(Backend::Ipopt, options.backend_options));
+  configure(*app, qp, options, options_for(Backend::Ipopt, options.backend_options), nlp);
   return app;
 }
 
@@ -334,7 +328,9 @@ void check_ipopt_options(const SolveOptions& options) {
   configured_application(QuadraticProgram{}, options);
 }
 
-SolveResult solve_ipopt(const QuadraticProgram& qp, const SolveOptions& options) {
+// One Ipopt solve: the primal QP without friction force, else the frictional dual with the
+// discs' radii `radii`.
+SolveResult solve_ipopt_once(const QuadraticProgram& qp, const VectorXd& radii, const SolveOptions& options) {
   std::lock_guard<std::mutex> lock(ipopt_mutex());
   // Where PETSc is built in, Ipopt's MUMPS calls reach PETSc's MPI MUMPS: MPI must be running.
   // Its start-up, once per process, is timed apart so that Ipopt's own phases stay comparable.
@@ -344,8 +340,10 @@ SolveResult solve_ipopt(const QuadraticProgram& qp, const SolveOptions& options)
   SolveResult result;
   if (start_seconds > 1e-3) result.timings.add("petsc_start", start_seconds);
   Stopwatch setup_clock;
-  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = configured_application(qp, options);
-  Ipopt::SmartPtr<QpNlp> nlp = new QpNlp(qp, options);
+  const bool frictional = radii.size() > 0 && radii.cwiseAbs().maxCoeff() > 0;
+  Ipopt::SmartPtr<ContactNlp> nlp =
+      frictional ? make_friction_dual_nlp(qp, radii) : Ipopt::SmartPtr<ContactNlp>(new QpNlp(qp, options));
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = configured_application(qp, options, Ipopt::GetRawPtr(nlp));
   for (const auto& [key, value] : options_for(Backend::Ipopt, options.backend_options))
     if (changes_internal_scaling(key)) nlp->disable_observer();
   const Ipopt::ApplicationReturnStatus initialized = app->Initialize();
@@ -378,14 +376,28 @@ SolveResult solve_ipopt(const QuadraticProgram& qp, const SolveOptions& options)
   if (nlp->has_solution) {
     result.u = nlp->u;
     result.lambda = nlp->lambda;
+    result.lambda_t = frictional ? nlp->lambda_t : VectorXd(VectorXd::Zero(qp.friction.T.rows()));
   } else {
     result.u = VectorXd::Zero(qp.n_dofs());
     result.lambda = VectorXd::Zero(qp.n_constraints());
+    result.lambda_t = VectorXd::Zero(qp.friction.T.rows());
     if (result.status == Status::Converged) result.status = Status::NumericalError;
   }
-  result.message = "Ipopt: " + std::string(outcome.name) + " after " + std::to_string(result.iterations) +
-                   " iterations" + (outcome.status == Status::Converged ? "" : std::string("; ") + outcome.advice);
+  result.message = "Ipopt" + std::string(frictional ? " (Tresca's dual)" : "") + ": " + outcome.name + " after " +
+                   std::to_string(result.iterations) + " iterations" +
+                   (outcome.status == Status::Converged ? "" : std::string("; ") + outcome.advice);
   return result;
+}
+
+SolveResult solve_ipopt(const QuadraticProgram& qp, const SolveOptions& options) {
+  // An interior point gains little from a starting point near the answer: the warm start is
+  // only checked, not used.
+  initial_multipliers(qp, options, MultiplierSet(qp, qp.friction.threshold));
+  if (qp.friction.law == FrictionLaw::Coulomb && !without_friction_force(qp.friction))
+    return solve_coulomb_by_fixed_point(qp, options, [&](const VectorXd& radii, const SolveOptions& step_options) {
+      return solve_ipopt_once(qp, radii, step_options);
+    });
+  return solve_ipopt_once(qp, qp.friction.threshold, options);
 }
 
 }  // namespace
@@ -402,6 +414,7 @@ CONTACTQP_BUILTIN(ipopt) {
 #ifdef CONTACTQP_HAVE_IPOPT
   ipopt.check_options = check_ipopt_options;
   ipopt.solve = solve_ipopt;
+  ipopt.problem_kinds = {ProblemKind::Frictionless, ProblemKind::Tresca, ProblemKind::Coulomb};
 #else
   ipopt.available = false;
 #endif

@@ -35,6 +35,11 @@ class LcpOperator {
   virtual bool solve_principal(const std::vector<int>& A, const VectorXd& b, VectorXd& x) const = 0;
 };
 
+// x = A⁻¹ b for a symmetric positive (semi)definite A of which only the lower triangle is read:
+// LAPACK's Cholesky, or a pivoted LDLᵀ when A is not numerically positive definite. False when
+// neither gives a finite x.
+bool solve_dense_spd(MatrixXd A, const VectorXd& b, VectorXd& x);
+
 // S stored dense; S_AA by a dense Cholesky factorisation (LDLᵀ when S_AA is nearly singular).
 class DenseLcpOperator : public LcpOperator {
  public:

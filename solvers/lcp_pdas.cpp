@@ -43,12 +43,8 @@ constexpr int kMaxHalvings = 60;
 
 VectorXd DenseLcpOperator::times(const VectorXd& x) const { return S_ * x; }
 
-bool DenseLcpOperator::solve_principal(const std::vector<int>& A, const VectorXd& b, VectorXd& x) const {
-  const Eigen::Index a = static_cast<Eigen::Index>(A.size());
-  MatrixXd block(a, a);
-  for (Eigen::Index j = 0; j < a; ++j)
-    for (Eigen::Index i = j; i < a; ++i) block(i, j) = S_(A[i], A[j]);  // LLT reads the lower triangle
-  const int n = static_cast<int>(a), one = 1;
+bool solve_dense_spd(MatrixXd block, const VectorXd& b, VectorXd& x) {
+  const int n = static_cast<int>(block.rows()), one = 1;
   int info = 0;
   MatrixXd factor = block;
   if (n > 0) dpotrf_("L", &n, factor.data(), &n, &info);
@@ -64,6 +60,14 @@ bool DenseLcpOperator::solve_principal(const std::vector<int>& A, const VectorXd
   if (ldlt.info() != Eigen::Success) return false;
   x = ldlt.solve(b);
   return x.allFinite();
+}
+
+bool DenseLcpOperator::solve_principal(const std::vector<int>& A, const VectorXd& b, VectorXd& x) const {
+  const Eigen::Index a = static_cast<Eigen::Index>(A.size());
+  MatrixXd block(a, a);
+  for (Eigen::Index j = 0; j < a; ++j)
+    for (Eigen::Index i = j; i < a; ++i) block(i, j) = S_(A[i], A[j]);  // LLT reads the lower triangle
+  return solve_dense_spd(std::move(block), b, x);
 }
 
 VectorXd MatrixFreeLcpOperator::times(const VectorXd& x) const {

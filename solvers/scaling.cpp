@@ -36,6 +36,10 @@ QuadraticProgram scaled_qp(const QuadraticProgram& qp, const QpScaling& scaling)
   scaled.rows = qp.rows;
   scaled.near_null_space = qp.near_null_space;  // directions: unchanged by the scaling of K
   scaled.coarse_space = qp.coarse_space;        // an interpolation: unchanged too
+  // T's rows are unit directions like B's; the offset is a length, the threshold a force, μ a ratio.
+  scaled.friction = qp.friction;
+  scaled.friction.offset = qp.friction.offset / scaling.displacement;
+  scaled.friction.threshold = qp.friction.threshold / (scaling.stiffness * scaling.displacement);
   return scaled;
 }
 
@@ -45,6 +49,10 @@ SolveOptions scaled_options(const SolveOptions& options, const QpScaling& scalin
     scaled.uzawa.rho = options.uzawa.rho / scaling.stiffness;
   scaled.uzawa.rho_unit = options.uzawa.rho_unit * scaling.stiffness;
   if (options.K_factor) scaled.K_factor = options.K_factor->scaled(1.0 / scaling.stiffness);
+  const double force = scaling.stiffness * scaling.displacement;
+  scaled.initial.u = options.initial.u / scaling.displacement;
+  scaled.initial.lambda = options.initial.lambda / force;
+  scaled.initial.lambda_t = options.initial.lambda_t / force;
   if (options.observer) {
     // The observer sees iterates in the caller's units, like the final result.
     scaled.observer = [observer = options.observer, scaling](int k, const VectorXd& u, const VectorXd& lambda) {
@@ -57,6 +65,7 @@ SolveOptions scaled_options(const SolveOptions& options, const QpScaling& scalin
 void unscale_result(SolveResult& result, const QpScaling& scaling) {
   result.u *= scaling.displacement;
   result.lambda *= scaling.stiffness * scaling.displacement;
+  result.lambda_t *= scaling.stiffness * scaling.displacement;
   for (const char* key : kStepDiagnostics) {
     auto it = result.diagnostics.find(key);
     if (it != result.diagnostics.end()) it->second *= scaling.stiffness;

@@ -79,10 +79,17 @@ void check_option_names(const BackendRegistration& registration, const SolveOpti
 }
 
 // solve() refuses a problem its backend does not solve, naming the backends that do.
-void check_problem_kind(const BackendRegistration& registration, ProblemKind kind) {
-  if (std::find(registration.problem_kinds.begin(), registration.problem_kinds.end(), kind) !=
-      registration.problem_kinds.end())
-    return;
+void check_problem_kind(const BackendRegistration& registration, const QuadraticProgram& qp) {
+  const ProblemKind kind = problem_kind(qp);
+  const bool kind_solved = std::find(registration.problem_kinds.begin(), registration.problem_kinds.end(), kind) !=
+                           registration.problem_kinds.end();
+  if (kind_solved && !qp.friction.empty() && qp.friction.n_directions > registration.max_friction_directions) {
+    std::vector<std::string> others;
+    for (Backend other : available_backends(qp)) others.push_back(to_string(other));
+    throw InputError("backend", "= \"" + registration.name + "\": does not solve 3D " + to_string(kind) +
+                                    " problems (2D only); backends that do: " + join(others));
+  }
+  if (kind_solved) return;
   std::vector<std::string> solved, others;
   for (ProblemKind k : registration.problem_kinds) solved.push_back(to_string(k));
   for (Backend other : available_backends(kind)) others.push_back(to_string(other));
@@ -120,7 +127,7 @@ SolveResult solve_with(const QuadraticProgram& qp, const SolveOptions& options, 
                        const BackendSolve& backend_solve) {
   validate(qp);
   check_solve_options(options);
-  check_problem_kind(*backend_registration(options.backend), problem_kind(qp));
+  check_problem_kind(*backend_registration(options.backend), qp);
   Stopwatch clock;
 
   SolveResult result;
@@ -133,19 +140,23 @@ SolveResult solve_with(const QuadraticProgram& qp, const SolveOptions& options, 
   }
 
   // The final guard: no NaN or Inf ever leaves solve(), nor numbers whose energy overflows.
+  // With friction λ_T has m · n_directions entries; without, none.
+  const long t_rows = qp.friction.empty() ? 0 : qp.friction.T.rows();
   if (result.u.size() != qp.n_dofs() || !result.u.allFinite() || result.lambda.size() != qp.n_constraints() ||
-      !result.lambda.allFinite()) {
+      !result.lambda.allFinite() || result.lambda_t.size() != t_rows || !result.lambda_t.allFinite()) {
     if (result.status == Status::Converged) {
       result.status = Status::NumericalError;
       result.message = "the backend returned a solution that is not finite";
     }
     result.u = VectorXd::Zero(qp.n_dofs());
     result.lambda = VectorXd::Zero(qp.n_constraints());
+    result.lambda_t = VectorXd::Zero(t_rows);
   } else if (overflows(qp, K.times, result)) {
     if (result.status == Status::Converged) result.status = Status::NumericalError;
     result.message += "; its last iterate overflows (energy beyond double range) and is reported as u = 0, λ = 0";
     result.u = VectorXd::Zero(qp.n_dofs());
     result.lambda = VectorXd::Zero(qp.n_constraints());
+    result.lambda_t = VectorXd::Zero(t_rows);
   }
   zero_separated_multipliers(qp, K.times, result, options.tol);
   report_linear_solver(result);

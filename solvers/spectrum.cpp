@@ -29,9 +29,14 @@ constexpr int kSettleWindow = 5;
 SpectrumEstimate estimate_spectrum(const QuadraticProgram& qp, const LinearSolver& K_factor,
                                    const std::vector<int>& rows, int max_steps, double rel_tol_max,
                                    double rel_tol_min) {
+  return estimate_spectrum(qp.B, K_factor, rows, max_steps, rel_tol_max, rel_tol_min);
+}
+
+SpectrumEstimate estimate_spectrum(const SparseMatrix& B, const LinearSolver& K_factor, const std::vector<int>& rows,
+                                   int max_steps, double rel_tol_max, double rel_tol_min) {
   SpectrumEstimate estimate;
   Stopwatch clock;
-  const SparseMatrix B_R = rows.empty() ? qp.B : select_rows(qp.B, rows);
+  const SparseMatrix B_R = rows.empty() ? B : select_rows(B, rows);
   const SparseMatrix B_R_transposed = B_R.transpose();
   const int r = static_cast<int>(B_R.rows());
   estimate.rows = r;

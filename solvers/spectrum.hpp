@@ -27,6 +27,10 @@ struct SpectrumEstimate {
 SpectrumEstimate estimate_spectrum(const QuadraticProgram& qp, const LinearSolver& K_factor,
                                    const std::vector<int>& rows = {}, int max_steps = 400, double rel_tol_max = 1e-6,
                                    double rel_tol_min = 1e-3);
+// The same for the rows of any C in place of B (e.g. the stacked [B; T] of a frictional problem).
+SpectrumEstimate estimate_spectrum(const SparseMatrix& C, const LinearSolver& K_factor,
+                                   const std::vector<int>& rows = {}, int max_steps = 400, double rel_tol_max = 1e-6,
+                                   double rel_tol_min = 1e-3);
 
 // λ_max(S) on every row (kept for callers that need only the bound ρ < 2/λ_max(S)).
 SpectrumEstimate estimate_lambda_max(const QuadraticProgram& qp, const LinearSolver& K_factor);

@@ -3,6 +3,9 @@
 //   K u_k = f − Bᵀλ_k                     (one solve with the factor of K, computed once)
 //   λ_{k+1} = max(0, λ_k + ρ (B u_k − g))
 //
+// With friction the same step on y = (λ_N, λ_T) and C = [B; T] (multiplier_set.hpp), projected on
+// λ_N ≥ 0 and on each λ_T,i's disc: λ_T,i ← proj(λ_T,i + ρ slip_i).
+//
 // With S = B K⁻¹ Bᵀ it converges for 0 < ρ < ρ_max = 2/λ_max(S). The step, the stopping
 // rule and the divergence guard are shared with the accelerated variant (uzawa_common.hpp).
 #include "uzawa_common.hpp"
@@ -12,17 +15,18 @@ namespace {
 
 UzawaRun plain_loop(const UzawaContext& context, const UzawaStep& step, int first_k, int max_iterations) {
   const QuadraticProgram& qp = context.qp;
+  const MultiplierSet& set = context.set;
   UzawaRun run;
   IterationMonitor monitor(context, step, first_k, run);
-  VectorXd lambda = VectorXd::Zero(qp.n_constraints());
-  VectorXd u = context.u_free;
+  VectorXd lambda = context.lambda_start;
+  VectorXd u = context.u_start;
   int k = 0;
   for (; k < max_iterations; ++k) {
     // Warm-started from the previous u: an iterative solver of K then starts close, as λ moves
     // less and less (a direct one ignores the guess).
-    if (k > 0) u = context.K_factor.solve(VectorXd(qp.f - qp.B.transpose() * lambda), u);
-    const VectorXd r = qp.B * u - qp.g;  // ≤ 0 where feasible
-    const VectorXd lambda_next = (lambda + step.rho * r).cwiseMax(0.0);
+    if (k > 0) u = context.K_factor.solve(VectorXd(qp.f - set.C().transpose() * lambda), u);
+    const VectorXd r = set.C() * u - set.c();  // ≤ 0 where feasible (normal rows); the slip (tangential rows)
+    const VectorXd lambda_next = set.project(lambda + step.rho * r);
     if (monitor.stop(k, u, r, lambda, lambda_next)) break;
     lambda = lambda_next;
   }
@@ -31,7 +35,7 @@ UzawaRun plain_loop(const UzawaContext& context, const UzawaStep& step, int firs
 }
 
 SolveResult solve_uzawa(const QuadraticProgram& qp, const SolveOptions& options) {
-  return run_uzawa(qp, options, UzawaVariant::Plain, plain_loop);
+  return solve_uzawa_variant(qp, options, UzawaVariant::Plain, plain_loop);
 }
 
 }  // namespace
@@ -44,5 +48,6 @@ CONTACTQP_BUILTIN(uzawa) {
   uzawa.order = 10;
   uzawa.check_options = check_uzawa_options;
   uzawa.solve = solve_uzawa;
+  uzawa.problem_kinds = {ProblemKind::Frictionless, ProblemKind::Tresca, ProblemKind::Coulomb};
   register_backend(uzawa);
 }

@@ -15,7 +15,8 @@
 // for θ; the momentum is then reset (t = 1, y = λ_{k+1}). It needs no extra solve, unlike the
 // function scheme, which would evaluate θ(λ_{k+1}).
 //
-// The extrapolated point is projected onto λ ≥ 0, so every (u_k, y_k) is a dual-feasible pair
+// The extrapolated point is projected onto λ ≥ 0 (and with friction onto the discs,
+// multiplier_set.hpp), so every (u_k, y_k) is a dual-feasible pair
 // with u_k = u(y_k): the stopping rule, the observer and the certificate see what plain
 // Uzawa's would, and the converged (u_k, y_k) is returned as it is.
 #include <algorithm>
@@ -37,19 +38,20 @@ double momentum_cap(const UzawaStep& step) {
 
 UzawaRun accelerated_loop(const UzawaContext& context, const UzawaStep& step, int first_k, int max_iterations) {
   const QuadraticProgram& qp = context.qp;
+  const MultiplierSet& set = context.set;
   UzawaRun run;
   IterationMonitor monitor(context, step, first_k, run);
   const double beta_cap = momentum_cap(step);
-  VectorXd lambda = VectorXd::Zero(qp.n_constraints());  // λ_k
-  VectorXd y = lambda;                                   // the extrapolated point y_k
-  VectorXd u = context.u_free;
+  VectorXd lambda = context.lambda_start;  // λ_k
+  VectorXd y = lambda;                     // the extrapolated point y_k
+  VectorXd u = context.u_start;
   double t = 1;
   int restarts = 0;
   int k = 0;
   for (; k < max_iterations; ++k) {
-    if (k > 0) u = context.K_factor.solve(VectorXd(qp.f - qp.B.transpose() * y), u);  // warm start, as in uzawa.cpp
-    const VectorXd r = qp.B * u - qp.g;
-    const VectorXd lambda_next = (y + step.rho * r).cwiseMax(0.0);
+    if (k > 0) u = context.K_factor.solve(VectorXd(qp.f - set.C().transpose() * y), u);  // warm start, as in uzawa.cpp
+    const VectorXd r = set.C() * u - set.c();
+    const VectorXd lambda_next = set.project(y + step.rho * r);
     if (monitor.stop(k, u, r, y, lambda_next)) break;
     if ((y - lambda_next).dot(lambda_next - lambda) > 0) {
       t = 1;
@@ -58,7 +60,7 @@ UzawaRun accelerated_loop(const UzawaContext& context, const UzawaStep& step, in
     } else {
       const double t_next = 0.5 * (1 + std::sqrt(1 + 4 * t * t));
       const double beta = std::min((t - 1) / t_next, beta_cap);
-      y = (lambda_next + beta * (lambda_next - lambda)).cwiseMax(0.0);
+      y = set.project(lambda_next + beta * (lambda_next - lambda));
       t = t_next;
     }
     lambda = lambda_next;
@@ -70,7 +72,7 @@ UzawaRun accelerated_loop(const UzawaContext& context, const UzawaStep& step, in
 }
 
 SolveResult solve_uzawa_accelerated(const QuadraticProgram& qp, const SolveOptions& options) {
-  return run_uzawa(qp, options, UzawaVariant::Accelerated, accelerated_loop);
+  return solve_uzawa_variant(qp, options, UzawaVariant::Accelerated, accelerated_loop);
 }
 
 }  // namespace
@@ -83,5 +85,6 @@ CONTACTQP_BUILTIN(uzawa_accel) {
   accelerated.order = 20;
   accelerated.check_options = check_uzawa_options;
   accelerated.solve = solve_uzawa_accelerated;
+  accelerated.problem_kinds = {ProblemKind::Frictionless, ProblemKind::Tresca, ProblemKind::Coulomb};
   register_backend(accelerated);
 }

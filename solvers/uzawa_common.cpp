@@ -5,6 +5,7 @@
 
 #include "backend_options.hpp"
 #include "contactqp/certificate.hpp"
+#include "coulomb_fixed_point.hpp"
 #include "qp/norms.hpp"
 #include "qp/number_format.hpp"
 
@@ -24,12 +25,41 @@ constexpr int kFlipWindow = 50;
 // optimum and no gap may be switched by a decaying error, which is convergence, not a cycle).
 constexpr double kFlipFloor = 1e-3;
 
-// The rows the unconstrained solution violates: the working set of the spectrum estimate.
-std::vector<int> violated_rows(const QuadraticProgram& qp, const VectorXd& u_free) {
+// Whether row i of C has an entry. T has zero rows where a node's tangential DOFs are
+// prescribed: S is 0 there, and such a row in the working set would make λ_min(S_R) = 0 and
+// ρ_opt = ρ_max, where plain Uzawa stops contracting.
+std::vector<bool> nonzero_rows(const MultiplierSet& set) {
+  std::vector<bool> nonzero(set.rows(), false);
+  const SparseMatrix& C = set.C();
+  for (int j = 0; j < C.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(C, j); it; ++it)
+      if (it.value() != 0) nonzero[it.row()] = true;
+  return nonzero;
+}
+
+// The rows the unconstrained solution violates, and with friction every (nonzero) tangential
+// row: the working set of the spectrum estimate.
+std::vector<int> violated_rows(const QuadraticProgram& qp, const MultiplierSet& set, const VectorXd& u_free) {
   const VectorXd r = qp.B * u_free - qp.g;
   std::vector<int> rows;
   for (int i = 0; i < r.size(); ++i)
     if (r[i] > 0) rows.push_back(i);
+  if (set.frictional()) {
+    const std::vector<bool> nonzero = nonzero_rows(set);
+    for (int i = set.normal_rows(); i < set.rows(); ++i)
+      if (nonzero[i]) rows.push_back(i);
+  }
+  return rows;
+}
+
+// "Every row" for the spectrum: {} (all of C) unless C has zero rows (friction only), then the others.
+std::vector<int> every_row(const MultiplierSet& set) {
+  if (!set.frictional()) return {};
+  const std::vector<bool> nonzero = nonzero_rows(set);
+  std::vector<int> rows;
+  for (int i = 0; i < set.rows(); ++i)
+    if (nonzero[i]) rows.push_back(i);
+  if (static_cast<int>(rows.size()) == set.rows()) rows.clear();
   return rows;
 }
 
@@ -37,11 +67,11 @@ std::vector<int> violated_rows(const QuadraticProgram& qp, const VectorXd& u_fre
 // Plain Uzawa's automatic step is ρ_opt = 2/(λ_min + λ_max), which minimises
 // max |1 − ρμ| over the spectrum; the accelerated iteration needs a step of at most 1/λ_max
 // (Nesterov/FISTA's 1/L), i.e. ρ_max/2.
-UzawaStep choose_step(const QuadraticProgram& qp, const LinearSolver& K_factor, const UzawaOptions& uzawa,
+UzawaStep choose_step(const MultiplierSet& set, const LinearSolver& K_factor, const UzawaOptions& uzawa,
                       UzawaVariant variant, const std::vector<int>& rows) {
   UzawaStep step;
   step.all_rows = rows.empty();
-  if (qp.n_constraints() > 0) step.spectrum = estimate_spectrum(qp, K_factor, rows);
+  if (set.rows() > 0) step.spectrum = estimate_spectrum(set.C(), K_factor, rows);
   const SpectrumEstimate& s = step.spectrum;
   if (s.lambda_max > 0) {
     step.rho_max = 2.0 / s.lambda_max;
@@ -114,13 +144,15 @@ std::string closing_message(const SolveOptions& options, UzawaVariant variant, c
 
 }  // namespace
 
-double uzawa_residual(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& r, const VectorXd& lambda_from,
+double uzawa_residual(const MultiplierSet& set, const VectorXd& u, const VectorXd& r, const VectorXd& lambda_from,
                       const VectorXd& lambda_next) {
   const double change = inf_norm(lambda_next - lambda_from);
   const double lambda_size = inf_norm(lambda_next);
   const double rel_change = lambda_size > 0 ? change / lambda_size : change;
-  const double L = length_scale(qp, u);
-  const double violation = r.size() ? std::max(0.0, r.maxCoeff()) : 0.0;
+  // certify()'s length scale without friction, max(‖u‖∞, ‖Bu‖∞); with it ‖Tu‖∞ joins.
+  const double L = std::max(inf_norm(u), inf_norm(VectorXd(set.C() * u)));
+  const int m = set.normal_rows();  // r's first m entries are B u − g; the rest, with friction, the slip
+  const double violation = m ? std::max(0.0, r.head(m).maxCoeff()) : 0.0;
   const double rel_violation = L > 0 ? violation / L : violation;
   return std::max(rel_change, rel_violation);
 }
@@ -140,7 +172,7 @@ DivergenceGuard::Verdict DivergenceGuard::check(int k, double residual, const Ve
 
   const double negligible = kFlipFloor * std::max(inf_norm(lambda_from), inf_norm(lambda_next));
   bool alternating = false;
-  for (int i = 0; i < lambda_next.size(); ++i) {
+  for (size_t i = 0; i < flips_.size(); ++i) {
     const bool flip =
         (lambda_next[i] > 0) != (lambda_from[i] > 0) && std::max(lambda_next[i], lambda_from[i]) > negligible;
     flips_[i] = flip ? flips_[i] + 1 : 0;
@@ -157,8 +189,8 @@ IterationMonitor::IterationMonitor(const UzawaContext& context, const UzawaStep&
       first_k_(first_k),
       run_(run),
       guard_(context.options.tol, context.qp.n_constraints(), step.stall_window) {
-  run_.u = context.u_free;
-  run_.lambda = VectorXd::Zero(context.qp.n_constraints());
+  run_.u = context.u_start;
+  run_.lambda = context.lambda_start;
 }
 
 bool IterationMonitor::stop(int k, const VectorXd& u, const VectorXd& r, const VectorXd& lambda_from,
@@ -169,8 +201,10 @@ bool IterationMonitor::stop(int k, const VectorXd& u, const VectorXd& r, const V
     run_.status = Status::NumericalError;
     return true;
   }
-  const double residual = uzawa_residual(context_.qp, u, r, lambda_from, lambda_next);
-  if (context_.options.observer) context_.options.observer(first_k_ + k + 1, u, lambda_from);
+  const double residual = uzawa_residual(context_.set, u, r, lambda_from, lambda_next);
+  if (context_.options.observer)
+    context_.options.observer(first_k_ + k + 1, u,
+                              context_.set.frictional() ? context_.set.lambda(lambda_from) : lambda_from);
   const DivergenceGuard::Verdict verdict = guard_.check(k, residual, lambda_from, lambda_next);
   if (verdict == DivergenceGuard::Verdict::Diverged) {
     run_.status = Status::Diverged;
@@ -191,7 +225,10 @@ void IterationMonitor::finish(int k) {
   run_.best_residual = guard_.best();
 }
 
-SolveResult run_uzawa(const QuadraticProgram& qp, const SolveOptions& options, UzawaVariant variant, UzawaLoop loop) {
+SolveResult run_uzawa(const QuadraticProgram& qp, const VectorXd& radii, const SolveOptions& options,
+                      UzawaVariant variant, UzawaLoop loop) {
+  const MultiplierSet set(qp, radii);
+  const VectorXd warm = initial_multipliers(qp, options, set);  // before any work: it checks sizes
   SolveResult result;
   result.K_factor = factor_of_K(qp, options, result.timings, result.message);
   if (!result.K_factor) return result;
@@ -200,33 +237,40 @@ SolveResult run_uzawa(const QuadraticProgram& qp, const SolveOptions& options, U
 
   Stopwatch clock;
   const VectorXd u_free = K_factor.solve(qp.f);
+  // The start: λ = 0 (u = K⁻¹f), or the warm start and its u (one solve more).
+  const VectorXd lambda_start = warm.size() ? warm : VectorXd(VectorXd::Zero(set.rows()));
+  const VectorXd u_start =
+      warm.size() ? K_factor.solve(VectorXd(qp.f - set.C().transpose() * warm), options.initial.u) : u_free;
   double solve_seconds = clock.seconds();
-  std::vector<int> working = violated_rows(qp, u_free);
-  if (static_cast<int>(working.size()) == m) working.clear();  // every row: no sub-block
+  std::vector<int> working = violated_rows(qp, set, u_free);
+  if (static_cast<int>(working.size()) == set.rows()) working.clear();  // every row: no sub-block
+  const std::vector<int> all_rows = every_row(set);
+  if (working.empty()) working = all_rows;
 
-  UzawaStep step = choose_step(qp, K_factor, options.uzawa, variant, working);
+  UzawaStep step = choose_step(set, K_factor, options.uzawa, variant, working);
   if (!K_factor.ok()) {
     result.message = "a solve with K failed before the iteration: " + K_factor.message();
     result.u = u_free;
     result.lambda = VectorXd::Zero(m);
+    result.lambda_t = set.lambda_t(VectorXd::Zero(set.rows()));
     return result;
   }
   double spectrum_seconds = step.spectrum.seconds;
   int spectrum_solves = step.spectrum.applications;
 
-  const UzawaContext context{qp, K_factor, options, u_free};
+  const UzawaContext context{qp, K_factor, options, set, lambda_start, u_start};
   clock.restart();
   UzawaRun run = loop(context, step, 0, options.max_iterations);
   solve_seconds += clock.seconds();
 
   // The working-set step is not guaranteed (ρ_opt of the block may exceed 2/λ_max of all of
   // S, and rows outside the block may become active): with --rho auto a run that does not
-  // converge starts again from λ = 0 with the step from every row, which is guaranteed.
+  // converge starts again from its start with the step from every row, which is guaranteed.
   bool fell_back = false;
   const int remaining = options.max_iterations - run.iterations;
-  if (run.status == Status::Diverged && options.uzawa.rho_rule == UzawaOptions::RhoRule::Auto && !step.all_rows &&
-      remaining > 0) {
-    step = choose_step(qp, K_factor, options.uzawa, variant, {});
+  if (run.status == Status::Diverged && options.uzawa.rho_rule == UzawaOptions::RhoRule::Auto &&
+      step.spectrum.rows < static_cast<int>(all_rows.empty() ? set.rows() : all_rows.size()) && remaining > 0) {
+    step = choose_step(set, K_factor, options.uzawa, variant, all_rows);
     spectrum_seconds += step.spectrum.seconds;
     spectrum_solves += step.spectrum.applications;
     clock.restart();
@@ -250,8 +294,29 @@ SolveResult run_uzawa(const QuadraticProgram& qp, const SolveOptions& options, U
                                                               std::to_string(run.iterations) + ": " + K_factor.message()
                                                         : closing_message(options, variant, step, run, fell_back);
   result.u = std::move(run.u);
-  result.lambda = std::move(run.lambda);
+  result.lambda_t = set.lambda_t(run.lambda);  // none without friction; zeros when every radius is 0
+  result.lambda = set.frictional() ? set.lambda(run.lambda) : std::move(run.lambda);
   return result;
+}
+
+SolveResult solve_uzawa_variant(const QuadraticProgram& qp, const SolveOptions& options, UzawaVariant variant,
+                                UzawaLoop loop) {
+  if (qp.friction.law != FrictionLaw::Coulomb) return run_uzawa(qp, qp.friction.threshold, options, variant, loop);
+  // The step of the first frictional Tresca solve serves the later ones: S = C K⁻¹ Cᵀ does not
+  // change with the radii.
+  double rho = 0;
+  return solve_coulomb_by_fixed_point(qp, options, [&](const VectorXd& radii, const SolveOptions& step_options) {
+    SolveOptions fixed = step_options;
+    if (rho > 0) {
+      fixed.uzawa.rho_rule = UzawaOptions::RhoRule::Absolute;
+      fixed.uzawa.rho = rho;
+    }
+    SolveResult result = run_uzawa(qp, radii, fixed, variant, loop);
+    // Not from a solve whose radii are all 0: that one ran on B's rows alone (multiplier_set.hpp).
+    const bool frictional = radii.size() > 0 && radii.cwiseAbs().maxCoeff() > 0;
+    if (rho == 0 && frictional && result.status == Status::Converged) rho = result.diagnostics["rho"];
+    return result;
+  });
 }
 
 void check_uzawa_options(const SolveOptions& options) {

@@ -7,6 +7,11 @@
 // Uzawa's first step activates from λ = 0, and on contact problems they contain the rows that
 // end up active, so λ_max(S_R) bounds the active block's λ_max, which sets the asymptotic rate,
 // while staying close to what the first iterates see. When no row is violated, R is every row.
+//
+// With friction the loops run on the multipliers y = (λ_N, λ_T) of multiplier_set.hpp: the rows
+// C = [B; T], the projection onto λ_N ≥ 0 and the discs, S = C K⁻¹ Cᵀ; R adds every tangential
+// row (a sticking node's λ_T moves freely inside its disc, so its rows belong to the block that
+// sets the rate). The stopping rule's primal violation is that of the normal rows.
 #pragma once
 
 #include <limits>
@@ -15,6 +20,7 @@
 #include <vector>
 
 #include "backends.hpp"
+#include "multiplier_set.hpp"
 #include "spectrum.hpp"
 
 namespace contactqp::detail {
@@ -34,9 +40,10 @@ struct UzawaStep {
 };
 
 // The stopping rule of both variants: the projected step λ_next − λ_from, relative to λ_next
-// (∞-norm), and the primal violation max(0, Bu − g), relative to the displacement (the length
-// scale of certificate.hpp). Converged when the larger of the two is ≤ tol.
-double uzawa_residual(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& r, const VectorXd& lambda_from,
+// (∞-norm), and the primal violation max(0, Bu − g) (the first m entries of r = C u − c),
+// relative to the displacement (the length scale of certificate.hpp). Converged when the
+// larger of the two is ≤ tol.
+double uzawa_residual(const MultiplierSet& set, const VectorXd& u, const VectorXd& r, const VectorXd& lambda_from,
                       const VectorXd& lambda_next);
 
 // Watches an iteration and says when to stop. Three signs that it will not converge:
@@ -56,6 +63,7 @@ double uzawa_residual(const QuadraticProgram& qp, const VectorXd& u, const Vecto
 class DivergenceGuard {
  public:
   enum class Verdict { Continue, Converged, Diverged };
+  // n_rows: the normal rows (the first entries of λ), whose switching on and off is watched.
   DivergenceGuard(double tol, int n_rows, double stall_window)
       : tol_(tol), stall_window_(stall_window), flips_(n_rows, 0) {}
   Verdict check(int k, double residual, const VectorXd& lambda_from, const VectorXd& lambda_next);
@@ -73,15 +81,18 @@ class DivergenceGuard {
   int last_step_progress_ = 0;      // last iteration with a new smallest step
 };
 
-// Everything one run of a loop needs; u_free = K⁻¹f is the iterate at λ = 0, already solved.
+// Everything one run of a loop needs: the multipliers' rows and set, and the start y₀ with
+// u_start = u(y₀), already solved (y₀ = 0 and u_start = K⁻¹f, or the warm start).
 struct UzawaContext {
   const QuadraticProgram& qp;
   const LinearSolver& K_factor;
   const SolveOptions& options;
-  const VectorXd& u_free;
+  const MultiplierSet& set;
+  const VectorXd& lambda_start;
+  const VectorXd& u_start;
 };
 
-// What a loop returns: its outcome and the last finite iterate, u = u(λ).
+// What a loop returns: its outcome and the last finite iterate, u = u(λ) (λ = y with friction).
 struct UzawaRun {
   Status status = Status::MaxIterations;
   VectorXd u, lambda;
@@ -109,13 +120,21 @@ class IterationMonitor {
   DivergenceGuard guard_;
 };
 
-// One run from λ = 0 with a fixed step; `first_k` numbers the iterates for the observer
-// (k = first_k + 1, ...) so that a restarted run continues the count.
+// One run from the context's start with a fixed step; `first_k` numbers the iterates for the
+// observer (k = first_k + 1, ...) so that a restarted run continues the count.
 using UzawaLoop = UzawaRun (*)(const UzawaContext& context, const UzawaStep& step, int first_k, int max_iterations);
 
 // The whole backend around a loop: factor K, choose ρ, run, fall back (with --rho auto) to
 // the step from every row when the working-set step does not converge, fill the result.
-SolveResult run_uzawa(const QuadraticProgram& qp, const SolveOptions& options, UzawaVariant variant, UzawaLoop loop);
+// `radii`: the discs' radii when qp has friction (Tresca's thresholds, or Coulomb's μλ_N frozen
+// by the fixed point); ignored without friction.
+SolveResult run_uzawa(const QuadraticProgram& qp, const VectorXd& radii, const SolveOptions& options,
+                      UzawaVariant variant, UzawaLoop loop);
+
+// The backend entry of both variants: run_uzawa on the frictionless or Tresca problem,
+// Coulomb's fixed point around it (coulomb_fixed_point.hpp).
+SolveResult solve_uzawa_variant(const QuadraticProgram& qp, const SolveOptions& options, UzawaVariant variant,
+                                UzawaLoop loop);
 
 // Both variants take no backend options (their step is --rho): InputError on a key addressed to them.
 void check_uzawa_options(const SolveOptions& options);

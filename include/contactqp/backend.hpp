@@ -39,6 +39,9 @@ struct BackendRegistration {
   bool available = true;
   // The problems it solves (friction.hpp); solve() refuses any other kind as bad input.
   std::vector<ProblemKind> problem_kinds = {ProblemKind::Frictionless};
+  // With friction, the most tangential directions per contact row it solves: 2 (2D and 3D), or
+  // 1 (2D only: nlopt, whose bounds hold an interval but not a disc). solve() refuses more.
+  int max_friction_directions = 2;
   // The backend options it reads (--backend-option key=value, a scene's solver.options), for
   // the help and for the default check below.
   std::vector<std::string> option_names;
@@ -84,5 +87,8 @@ bool backend_available(Backend backend);  // registered, and its library was bui
 std::vector<Backend> available_backends();
 std::vector<Backend> available_backends(ProblemKind kind);
 bool backend_supports(Backend backend, ProblemKind kind);  // false for a backend not registered
+// The same for one QP: its kind and, with friction, its dimension (max_friction_directions).
+bool backend_solves(Backend backend, const QuadraticProgram& qp);
+std::vector<Backend> available_backends(const QuadraticProgram& qp);
 
 }  // namespace contactqp

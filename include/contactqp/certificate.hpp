@@ -19,6 +19,24 @@
 // The dual function θ(λ) = −½(f − Bᵀλ)ᵀK⁻¹(f − Bᵀλ) − gᵀλ needs one solve with K; it is
 // evaluated as θ = L(u, λ) − ½ rᵀK⁻¹r with r the stationarity residual, which is exact and
 // keeps full precision near the optimum where r is tiny.
+//
+// With friction (friction.hpp), from (u, λ, λ_T), slip = T u − offset and the radii r_i of the
+// discs λ_T,i must lie in (threshold_i under Tresca, μ_i max(0, λ_N,i) under Coulomb):
+//   force scale   F = max(‖f‖∞, ‖Ku‖∞, ‖Bᵀλ‖∞, ‖Tᵀλ_T‖∞)
+//   length scale  L = max(‖u‖∞, ‖Bu‖∞, ‖slip‖∞)
+//   stationarity  = ‖Ku − f + Bᵀλ + Tᵀλ_T‖∞ / F
+//   tangential    = max_i ‖λ_T,i − proj_{D_i}(λ_T,i + ρ slip_i)‖₂ / F,   ρ = F/L
+//                   (the natural map of the tangential condition: zero exactly when every node
+//                   sticks with ‖λ_T,i‖ ≤ r_i and slip_i = 0, or slips with λ_T,i = r_i
+//                   slip_i/‖slip_i‖; ρ = F/L weighs a slip of L like a force of F, so the
+//                   residual is dimensionless and the same in any units; ρ = 1 when L or F is 0)
+//   the other three as above, on the normal rows.
+// J(u) = ½uᵀKu − fᵀu + Σ r_i ‖slip_i‖ (Tresca's primal objective) and
+// θ = −½ rᵀK⁻¹r − gᵀλ − offsetᵀλ_T with r = f − Bᵀλ − Tᵀλ_T, evaluated as above from the
+// Lagrangian L = J₀ + λᵀ(Bu − g) + λ_Tᵀ slip; the energy scale adds Σ r_i ‖slip_i‖. The gap is
+// ≥ 0 when u is feasible and every λ_T,i lies in its disc, and zero exactly at the optimum. Under
+// Coulomb's law the radii come from the λ being certified: J and θ are those of the Tresca
+// problem with threshold μλ_N, which a Coulomb solution solves, so its gap is zero too.
 #pragma once
 
 #include <limits>
@@ -33,13 +51,14 @@ struct Certificate {
   double primal_feasibility = 0;  // relative
   double dual_feasibility = 0;    // relative
   double complementarity = 0;     // relative
-  double objective = 0;           // J(u), in the QP's energy units
+  double tangential = 0;          // relative natural-map residual of the friction law; 0 without friction
+  double objective = 0;           // J(u), in the QP's energy units (with friction, Σ r_i‖slip_i‖ included)
   double dual_objective = 0;      // θ(λ); −inf is reported as not finite (K singular and f − Bᵀλ ∉ range K)
   double duality_gap = 0;         // J(u) − θ(λ), energy units; ≥ 0 up to round-off when u is feasible
   double relative_gap = 0;        // duality_gap / energy scale
   bool dual_available = true;     // false when K could not be factorised; θ and the gaps are then 0
 
-  double kkt_max() const;  // the largest of the four relative KKT residuals
+  double kkt_max() const;  // the largest of the relative KKT residuals (tangential included)
 };
 
 // K_factor: a solver of qp.K to reuse (e.g. SolveResult::K_factor), of any kind: θ needs one
@@ -47,6 +66,9 @@ struct Certificate {
 // (docs/linear-solvers.md) keeps the correction ½ rᵀK⁻¹r accurate as r → 0. When null,
 // certify() factorises K itself (one sparse Cholesky).
 Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda,
+                    const LinearSolver* K_factor = nullptr);
+// With friction: λ_T = lambda_t (m · n_directions entries; empty reads as 0).
+Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda, const VectorXd& lambda_t,
                     const LinearSolver* K_factor = nullptr);
 
 // What the certificate's formulas read of (qp, u, λ): maxima and sums over the entries. A caller
@@ -74,7 +96,8 @@ CertificateTerms certificate_terms(const QuadraticProgram& qp, const VectorXd& K
 Certificate certificate_from(const CertificateTerms& terms);
 
 // The scales above, exposed so that backends' stopping rules measure the same things.
-double force_scale(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda);
+double force_scale(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda,
+                   const VectorXd& lambda_t = VectorXd());
 double force_scale(const VectorXd& f, const VectorXd& Ku, const VectorXd& Btl);  // from the products
 double length_scale(const QuadraticProgram& qp, const VectorXd& u);
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,6 +28,21 @@ struct ProblemSize {
   long long nodes = 0, elements = 0, dofs = 0, constraints = 0;
 };
 
+// One load step of a run with steps (scene.steps, docs/friction.md): what it solved and the
+// contact it gave, post-processed as the run's last state is.
+struct StepReport {
+  std::string path;                                     // "steps[1]"
+  std::vector<std::pair<std::string, double>> factors;  // every named load's factor at the step's end
+  Status status = Status::NumericalError;
+  std::string message;
+  int iterations = 0;
+  double seconds = 0;  // the step's solve
+  std::map<std::string, double> diagnostics;
+  ContactSummary contact;
+  std::vector<PairContact> pairs;
+  std::vector<Reaction> reactions;
+};
+
 // Everything one solve produced, for the result file and the summary. run_scene() (run.hpp)
 // makes one. The report owns what it holds, the model and the QP included (shared, read-only),
 // so that it outlives the scene it came from, e.g. as a Python object.
@@ -41,6 +57,8 @@ struct RunReport {
   std::optional<PunchComparison> boussinesq;  // 3D scenes pressed by a flat punch
   std::vector<Reaction> reactions;            // one per displacement load
   std::vector<PairContact> pairs;             // one per contact pair of a scene with bodies
+  std::optional<FrictionFields> friction;     // each row's friction, with friction (the last step's)
+  std::vector<StepReport> steps;              // each load step in order; empty without steps
   Timings timings;                            // every phase: mesh, assemble, factorize, solve, ..., total
   bool no_contact = false;                    // a linear solve with the contact rows dropped (--no-contact)
   std::vector<std::string> warnings;          // also printed on stderr

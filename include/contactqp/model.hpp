@@ -55,6 +55,12 @@ struct PairSides {
   double node_face_size = 0, face_face_size = 0;  // the smallest face of each side's boundary (length)
 };
 
+// One load's own share of the model, for load steps (scene.steps): apply_load_step() scales it.
+struct LoadShare {
+  Eigen::VectorXd nodal_force;                     // dim·n_nodes, global axes: the load's consistent nodal forces
+  std::vector<std::pair<int, double>> prescribed;  // (DOF, value) the load prescribes, as Model::prescribed holds it
+};
+
 struct Model {
   // The scene as solved, in the global frame: its transform is applied (obstacles and load
   // vectors rotated) and reset; `rotation` remembers it (a rotation about z in 2D).
@@ -84,6 +90,10 @@ struct Model {
   std::vector<ModelBody> bodies;
   std::vector<int> element_body;
   std::vector<PairSides> pair_sides;
+  // With load steps (scene.steps): each load's share, one per entry of scene.loads (which with
+  // bodies holds every body's loads, in order). Empty without steps. The model as built has
+  // every load in full; apply_load_step() sets a step's.
+  std::vector<LoadShare> load_shares;
 
   int body_of_node(int node) const;  // 0 for a one-body model
 };
@@ -101,6 +111,13 @@ Model build_model(const Scene& scene, const BuildOptions& options = {});
 // a problem held in parts by several processes whose parts of the elements sum to the whole
 // (include/contactqp/petsc/par_qp.hpp). Records "assemble" in model timings.
 QuadraticProgram assemble_qp(Model& model, const std::vector<char>& elements = {});
+
+// Sets the model and its QP to one load step: prescribed and nodal_force become the loads'
+// shares scaled by `factors` (one per entry of model.scene.loads, load_factors()), and qp.f and
+// qp.g follow; K, B and the friction rows are unchanged (the friction offset is the caller's:
+// it depends on the last step's solution). InputError naming `step` when two loads then
+// prescribe one DOF to different values. Needs model.load_shares (a scene with steps).
+void apply_load_step(Model& model, QuadraticProgram& qp, const std::vector<double>& factors, const std::string& step);
 
 // The full nodal displacement field (dim·n_nodes, global axes) from the free DOFs u.
 Eigen::VectorXd full_displacement(const Model& model, const Eigen::VectorXd& u);

@@ -21,7 +21,69 @@ struct ContactProfilePoint {
   double force = 0;     // λ_i, the nodal contact force (for the model's thickness)
   int node = -1;
   int obstacle = -1;
+  int row = -1;  // the constraint row (−1 for a pair's face-side point)
 };
+
+// Cattaneo–Mindlin (docs/friction.md): normal force P first, then a tangential force Q < μP,
+// for two cylinders (2D, per length) or two spheres (3D), or one on a rigid plane. Hertz's b
+// (a) and p0 for P; the stick zone c = b sqrt(1 − Q/(μP)) (2D), a (1 − Q/(μP))^(1/3) (3D); the
+// traction along Q, q = μ p0 sqrt(1 − x²/b²) in the slip zone c ≤ |x| ≤ b and
+// μ p0 [sqrt(1 − x²/b²) − (c/b) sqrt(1 − x²/c²)] in the stick zone. Exact for Dundurs' β = 0
+// (bodies of one material); β is reported beside it.
+struct MindlinComparison {
+  int dim = 2;
+  double coefficient = 0;       // μ
+  double normal_force = 0;      // P (2D: per length)
+  double tangential_force = 0;  // Q, the friction resultant's length (same units)
+  double load_ratio = 0;        // Q/(μP)
+  double dundurs_beta = 0;  // β = [G1(1 − 2ν2) − G2(1 − 2ν1)] / [2G1(1 − ν2) + 2G2(1 − ν1)], body 1 the node side
+  double half_width = 0;    // Hertz's b (2D) or a (3D) for P
+  double max_pressure = 0;  // Hertz's p0
+  double stick_size = 0;    // Mindlin's c (0 at full sliding, Q ≥ μP)
+  double stick_size_computed = 0;
+  double error_stick_size = 0;  // (c_h − c)/c, or /b (/a) when c = 0
+  double error_l2 = 0;          // ‖q_h − q‖_L2 / ‖q‖_L2 over the contact zone, q_h the traction along Q
+  // The tangential displacement of distant points that slip adds to a stuck contact's at the
+  // same Q: δ_t(Q) − Q dδ_t/dQ(0). 3D: δ_t = (3μP/(16a)) C [1 − (1 − Q/(μP))^(2/3)], C =
+  // (2 − ν1)/G1 + (2 − ν2)/G2; 2D: (2/(π E*)) [Q/2 − μP (c/b)² ln(b/c)] (finite where δ_t is not).
+  double slip_displacement = 0;
+};
+
+// A symmetric model (body.symmetry) stands for symmetry_copies() mirror images of itself. The
+// sum over the images of a vector (a force) keeps its components along the cuts, times the
+// copies, and loses those across them (the 3D quarter: along z only; the half y ≥ 0: x and z);
+// their mean point (a centre) loses the components across the cuts. Unchanged without symmetry.
+Eigen::Vector3d whole_body_sum(const Model& model, const Eigen::Vector3d& vector);
+Eigen::Vector3d mirror_mean(const Model& model, const Eigen::Vector3d& point);
+double mirror_copies(const Model& model);
+
+// Mindlin's traction along Q at distance x from the centre (0 beyond b or a).
+double mindlin_traction(const MindlinComparison& mindlin, double x);
+
+// The friction of one contact zone (an obstacle's or a pair's), for the whole body (doubled by a
+// 2D symmetry plane, four times a 3D quarter's).
+struct FrictionZone {
+  Eigen::Vector3d resultant = Eigen::Vector3d::Zero();  // Σ friction forces on the (node-side) body (global axes)
+  double tangential_force = 0;                          // |resultant|
+  int stick_nodes = 0, slip_nodes = 0;                  // loaded rows in each state
+  // The stick zone's size from its nodes' tributaries: 2D its half-width, Σ w_i / 2; 3D its
+  // radius sqrt(Σ w_i / π) (whole body).
+  double stick_size = 0;
+  std::optional<MindlinComparison> mindlin;  // Coulomb, two round bodies (or one on a plane) with Hertz
+};
+
+// Friction at every contact row of a solution with λ_T (docs/friction.md).
+struct FrictionFields {
+  // The friction force on the row's node: −Σ_k λ_T,k t_k (global axes, for the thickness); a
+  // pair's face nodes carry its reaction.
+  std::vector<Eigen::Vector3d> force;
+  std::vector<Eigen::Vector3d> traction;  // force over the tributary (a 6-node face's vertex: its mid-sides' mean)
+  std::vector<Eigen::Vector3d> slip;      // Σ_k (T u − offset)_k t_k: this step's relative tangential displacement
+  std::vector<int> state;                 // 0 gap (λ_N = 0), 1 stick, 2 slip (‖λ_T‖ on its bound)
+  std::vector<double> bound;              // Tresca's s·w_i, Coulomb's μ_i λ_N,i
+};
+FrictionFields friction_fields(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
+                               const Eigen::VectorXd& lambda, const Eigen::VectorXd& lambda_t);
 
 // The contact on one obstacle.
 struct ObstacleContact {
@@ -47,7 +109,8 @@ struct ObstacleContact {
   double contact_area = 0;
   Eigen::Vector3d centre_point = Eigen::Vector3d::Zero();
   double max_pressure = 0;
-  int contact_nodes = 0;  // candidates carrying force (λ_i > 1e-8 · max λ)
+  int contact_nodes = 0;                 // candidates carrying force (λ_i > 1e-8 · max λ)
+  std::optional<FrictionZone> friction;  // with friction
 };
 
 struct ContactSummary {
@@ -65,6 +128,10 @@ struct ContactSummary {
   double contact_area = 0;
   double max_pressure = 0;  // over all obstacles
   int contact_nodes = 0;    // over all obstacles
+  // With friction: the tangential force over all obstacles (|Σ resultants|), and the stick
+  // zone of the obstacle carrying the largest force.
+  double tangential_force = 0;
+  double stick_size = 0;
   // Boundary nodes outside the candidate set that end up inside an obstacle: a sign that
   // contact.max_gap was too small.
   int penetrating_non_candidates = 0;
@@ -144,6 +211,7 @@ struct PairContact {
   int slipped_nodes = 0;
   double max_slip = 0;
   std::optional<HertzComparison> hertz;  // two cylinders (2D) or spheres (3D) when both sides are round or flat
+  std::optional<FrictionZone> friction;  // with friction
 };
 std::vector<PairContact> summarize_pairs(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
                                          const Eigen::VectorXd& lambda);
@@ -162,18 +230,38 @@ std::optional<HertzComparison> compare_with_hertz(const Model& model, const Cont
 // for the thickness): r = K u − f − (contact forces), summed over the boundary's nodes. With
 // the contact forces and the force loads it balances: Σ r + Σ λ n + Σ f = 0 (doubled
 // consistently when a symmetry plane halves the model, whose own reaction is left out).
+// The friction forces on the nodes (dim·n_nodes, global axes): −λ_T t on a row's node, its
+// reaction on a pair's face nodes. Zero without friction.
+Eigen::VectorXd friction_nodal_forces(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& lambda_t);
+
+// Mindlin's comparison for one contact zone with Coulomb's coefficient μ: `profile` its rows
+// (s along the surface in 2D, `centre` the zone's centre; r from the centre in 3D), `hertz` the
+// zone's Hertz comparison, `zone` its friction (resultant and stick size), `body` the node
+// side's material and `other` the other side's (nullptr: a rigid obstacle).
+MindlinComparison compare_with_mindlin(const Model& model, const FrictionFields& fields,
+                                       const std::vector<ContactProfilePoint>& profile, double centre,
+                                       const HertzComparison& hertz, double coefficient, const FrictionZone& zone,
+                                       const Material& body, const Material* other);
+
+// Adds friction to the summaries: each obstacle's and pair's FrictionZone, the summary's
+// tangential force and stick size, and Mindlin's comparison where it applies.
+void summarize_friction(const Model& model, const FrictionFields& fields, ContactSummary& contact,
+                        std::vector<PairContact>& pairs);
+
 struct Reaction {
   std::string load;                                 // the load's field path, e.g. "load[0]"
   std::string boundary;                             // its boundary
   Eigen::Vector3d force = Eigen::Vector3d::Zero();  // z = 0 in 2D
 };
 std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
-                                const Eigen::VectorXd& lambda);
+                                const Eigen::VectorXd& lambda, const Eigen::VectorXd& lambda_t = Eigen::VectorXd());
 // The same with a boundary's nodes given by `nodes_of` (a part of a mesh knows a node lies on a
-// boundary whose face is another rank's) and λ one per candidate (0 for the rows of other ranks).
-// A part's sums are its elements' and rows' share: the whole's are their sums over the parts.
+// boundary whose face is another rank's), λ one per candidate (0 for the rows of other ranks)
+// and the friction's nodal forces (friction_nodal_forces(); none when empty). A part's sums are
+// its elements' and rows' share: the whole's are their sums over the parts.
 std::vector<Reaction> reactions(const Model& model, const Eigen::VectorXd& u, const Eigen::VectorXd& lambda,
-                                const std::function<std::vector<int>(const std::string&)>& nodes_of);
+                                const std::function<std::vector<int>(const std::string&)>& nodes_of,
+                                const Eigen::VectorXd& friction_forces = Eigen::VectorXd());
 
 // Nodal stresses (force per area), averaged over the elements sharing each node (weighted by
 // their areas or volumes) from each element's stress at that node. In 2D σzz = ν(σxx + σyy)

@@ -53,7 +53,8 @@ struct QuadraticProgram {
 };
 
 // Throws InputError when the shapes disagree ("B has 412 columns, K has 410 rows") or an
-// entry is not finite. Cheap: O(nnz).
+// entry is not finite; with friction also when the friction block's sizes disagree with B and
+// K, or a threshold or coefficient is negative (friction.hpp). Cheap: O(nnz).
 void validate(const QuadraticProgram& qp);
 
 // K u.
@@ -150,6 +151,16 @@ struct ActiveSetOptions {
   double max_dense_bytes = 1024.0 * 1024.0 * 1024.0;
 };
 
+// A starting point, e.g. the last load step's answer (quasi-static load paths), in the
+// caller's units. Each vector is either empty (no guess) or of its full size: u n, lambda m,
+// lambda_t m · n_directions. Backends that can start from it do (uzawa, uzawa_accel and nlopt
+// from the multipliers, active_set from the multipliers' active, stick and slip sets, the
+// Coulomb fixed point from λ_N's threshold); the others ignore it.
+struct InitialGuess {
+  VectorXd u, lambda, lambda_t;
+  bool empty() const { return u.size() == 0 && lambda.size() == 0 && lambda_t.size() == 0; }
+};
+
 struct SolveOptions {
   Backend backend = Backend::Uzawa;
   double tol = 1e-8;  // relative, dimensionless: each backend's stopping rule uses the scales of certificate.hpp
@@ -172,7 +183,9 @@ struct SolveOptions {
   // A key "ipopt.print_level" is read only by that backend, so one map can serve several.
   std::map<std::string, std::string> backend_options;  // --backend-option key=value, passed through
   // A solver of this QP's K to reuse (backends that solve with K then skip their own set-up).
+  // Load steps keep K: pass the first step's SolveResult::K_factor to the later ones.
   std::shared_ptr<const LinearSolver> K_factor;
+  InitialGuess initial;  // warm start; empty: every backend starts from its own default
   // Called by iterative backends with each iterate (k = 1, 2, ...), in the caller's units:
   // for studies of convergence and tests of weak duality. Costs nothing when empty.
   std::function<void(int k, const VectorXd& u, const VectorXd& lambda)> observer;
@@ -185,8 +198,10 @@ struct SolveResult {
   // Tangential multipliers (friction.hpp), m · n_directions; empty for a frictionless problem.
   VectorXd lambda_t;
   int iterations = 0;
-  Timings timings;                            // seconds per phase ("factorize", "solve", ...)
-  std::map<std::string, double> diagnostics;  // named extras: "rho", "rho_max", ...
+  Timings timings;  // seconds per phase ("factorize", "solve", ...)
+  // Named extras: "rho", "rho_max", ...; Coulomb's "fixed_point_steps" (Tresca solves) and
+  // "fixed_point_change" (the last relative change of the threshold μλ_N, ∞-norm).
+  std::map<std::string, double> diagnostics;
   // Not failures, but worth telling the user: e.g. a PETSc option nothing read.
   std::vector<std::string> warnings;
   // The solver of K the backend used, if any: reuse it for certify() or further solves.

@@ -48,6 +48,24 @@ RunReport run_scene(const Scene& scene, const RunOptions& options = {});
 // The same for a scene file (InputError("path", ...) when it cannot be read).
 RunReport run_scene(const std::string& scene_path, const RunOptions& options = {});
 
+// The contact a solution gives: the summary over the obstacles, each pair's, the supports'
+// reactions and, with friction, each row's friction (FrictionZone in the summaries too).
+struct PostProcessed {
+  ContactSummary contact;
+  std::vector<PairContact> pairs;
+  std::vector<Reaction> reactions;
+  std::optional<FrictionFields> friction;
+};
+PostProcessed postprocess(const Model& model, const QuadraticProgram& qp, const SolveResult& result);
+
+// Solves a scene's load steps (scene.steps, docs/friction.md) in order on its model and QP: each
+// step sets its loads (apply_load_step) and the friction offset (the last step's tangential
+// positions), reuses the last step's factor of K and starts from its solution, and is
+// post-processed into `steps` (when given). Stops after a step that did not converge. Returns
+// the last step's result; the model and the QP are left at the last step solved.
+SolveResult solve_load_steps(Model& model, QuadraticProgram& qp, const Scene& scene, const SolveOptions& options,
+                             std::vector<StepReport>* steps = nullptr);
+
 // How closely converged backends must agree at tolerance T for a comparison to pass. Each
 // backend stops when its relative KKT residuals are below T; the error of a solution is that
 // residual amplified by the conditioning of the contact problem, more so for λ (a force read
@@ -60,7 +78,9 @@ Agreement agreement_for(double tol);  // {1e4 T, 1e5 T, 1e2 T}
 
 struct CompareOptions {
   BuildOptions build;
-  std::vector<Backend> backends;  // in this order; empty: available_backends(problem_kind(qp))
+  // In this order; empty: available_backends(qp), those that solve the scene's problem (its kind
+  // and, with friction, its dimension). A listed backend that does not is an InputError before any solve.
+  std::vector<Backend> backends;
 };
 
 // One backend's run within a comparison.
@@ -69,7 +89,8 @@ struct BackendRun {
   SolveResult result;       // its K_factor released: a factor per backend is memory the next one may need
   Certificate certificate;  // computed with the comparison's own factor of K, the same for every run
   ContactSummary contact;
-  std::optional<double> rel_diff_u, rel_diff_lambda;  // ‖x − x_ref‖/‖x_ref‖ against the reference run
+  // ‖x − x_ref‖/‖x_ref‖ against the reference run; with friction λ stands for (λ_N, λ_T)
+  std::optional<double> rel_diff_u, rel_diff_lambda;
 };
 
 struct CompareReport {
@@ -92,7 +113,9 @@ struct CompareReport {
 
 // Solves the scene's QP with each backend from scratch (its own factorisation included, so
 // that times compare), certifies every run with one shared factor, and measures how far the
-// answers lie from each other. Every backend's options are validated before any work.
+// answers lie from each other. A scene with load steps: each backend runs the whole path
+// (solve_load_steps) and the last steps are compared. Every backend's options are validated
+// before any work.
 CompareReport compare_scene(const Scene& scene, const CompareOptions& options = {});
 CompareReport compare_scene(const std::string& scene_path, const CompareOptions& options = {});
 

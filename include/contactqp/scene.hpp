@@ -72,6 +72,9 @@ struct BodySpec {
   // 2D: model only x ≥ 0, with u_x = 0 on x = 0 (boundary "symmetry"); 3D: only the quarter
   // x ≥ 0, y ≥ 0, with u_x = 0 on x = 0 (boundary "symmetry_x") and u_y = 0 on y = 0 ("symmetry_y").
   bool symmetry = false;
+  // 3D, with symmetry: which of the two planes cut the body. "symmetry": "y" keeps only y = 0
+  // (the half y ≥ 0: the plane that survives a load along x), "x" only x = 0; true both.
+  bool symmetry_x = true, symmetry_y = true;
   double thickness = 1.0;  // 2D: out-of-plane thickness (length); forces and K are per this thickness
   Formulation formulation = Formulation::Displacement;  // "displacement" or "mixed"
   MeshSpec mesh;                                        // generated shapes; for a .geo file only order and size_factor
@@ -104,6 +107,7 @@ struct PointLoad {                    // a force (for the thickness) at the node
 
 struct LoadSpec {
   std::string path;  // the load's field path in the scene ("load", "load[2]"), for messages
+  std::string name;  // "name": what load steps call it (scene.steps); "" for a load acting in full in every step
   std::variant<DisplacementLoad, TractionLoad, PressureLoad, GravityLoad, PointLoad> kind;
 
   std::string type() const;  // "displacement", "traction", "pressure", "gravity", "point"
@@ -156,9 +160,19 @@ struct PunchObstacle {
   double radius = 0;                                // a (length), > 0
 };
 
+// Friction on a contact boundary, an obstacle or a pair ("friction": {"coefficient": μ} or
+// {"threshold": s}; docs/friction.md). One law per scene.
+struct FrictionSpec {
+  std::string path;                     // its field path ("contact.friction"), for messages
+  FrictionLaw law = FrictionLaw::None;  // Coulomb (a coefficient) or Tresca (a threshold)
+  double coefficient = 0;               // Coulomb: μ ≥ 0, ‖λ_T,i‖ ≤ μ λ_N,i
+  double threshold = 0;                 // Tresca: s ≥ 0 (force per area), ‖λ_T,i‖ ≤ s·w_i
+};
+
 struct ObstacleSpec {
   std::string path;  // field path ("obstacle", "obstacle[1]"), for messages
   std::variant<PlaneObstacle, CircleObstacle, ProfileObstacle, SphereObstacle, CylinderObstacle, PunchObstacle> shape;
+  std::optional<FrictionSpec> friction = std::nullopt;  // on the rows against this obstacle; none: frictionless
 
   std::string type() const;  // "plane", "circle", "profile", "sphere", "cylinder", "punch"
   template <class Kind>
@@ -174,6 +188,7 @@ struct ObstacleSpec {
 struct ContactSpec {
   std::string boundary;           // boundary that may touch; default: the shape's (half_disc "arc", rectangle "bottom")
   std::optional<double> max_gap;  // candidates have initial gap ≤ max_gap; default follows from the loads
+  std::optional<FrictionSpec> friction;  // on every row of the boundary (then no obstacle has its own)
 };
 
 // A rigid rotation of the whole scene about the origin: the body, the load vectors and the
@@ -212,7 +227,8 @@ struct ContactPair {
   std::string path;  // "contact[0]"
   int body[2] = {-1, -1};
   std::string boundary[2];
-  std::optional<double> max_gap;  // the pair's candidate distance; default follows from the loads
+  std::optional<double> max_gap;         // the pair's candidate distance; default follows from the loads
+  std::optional<FrictionSpec> friction;  // between the two sides; none: frictionless
 };
 
 // A boundary of one body that may touch the rigid obstacles: {"boundary": "block.bottom"}.
@@ -221,6 +237,16 @@ struct ObstacleContactSpec {
   int body = -1;
   std::string boundary;
   std::optional<double> max_gap;
+  std::optional<FrictionSpec> friction;  // on the boundary's rows against every obstacle
+};
+
+// One load step ("steps": [{"factors": {"push": 1}}, ...]; docs/friction.md): the factors of the
+// named loads at the end of the step, totals rather than increments. A load a step does not name
+// keeps its factor from the step before; a named load starts at 0, an unnamed one acts in full
+// in every step.
+struct LoadStep {
+  std::string path;                                     // "steps[1]", for messages
+  std::vector<std::pair<std::string, double>> factors;  // (load name, factor) as written
 };
 
 struct Scene {
@@ -239,9 +265,19 @@ struct Scene {
   std::vector<SceneBody> bodies;
   std::vector<ContactPair> pairs;
   std::vector<ObstacleContactSpec> obstacle_contacts;
+  // Load steps, solved in order, each from the state the last one left (quasi-static,
+  // incremental). Empty: one step with every load in full.
+  std::vector<LoadStep> steps;
 
   int dim() const { return dimension(model); }
+  // The scene's friction law: None when no boundary, obstacle or pair has friction.
+  FrictionLaw friction_law() const;
 };
+
+// The factor of each load at each step: factors[k][l] for step k and load l, the loads in the
+// order of scene.loads followed by each body's (scene.bodies order). One step of factors 1 for
+// a scene without steps.
+std::vector<std::vector<double>> load_factors(const Scene& scene);
 
 // Parses and validates a scene. Throws InputError naming the field (or the file) on any
 // problem. `source` names the text in error messages; a mesh file named by the scene is
@@ -261,10 +297,16 @@ UzawaOptions parse_rho(const std::string& text, const std::string& field);
 // and build_model() checks the names.
 std::vector<std::string> boundary_names(const BodySpec& body);
 
-// The boundaries a symmetric generated body is cut by, and the displacement component each
-// holds at zero: {"symmetry"} (x = 0, u_x) in 2D; {"symmetry_x", "symmetry_y"} (x = 0, u_x and
-// y = 0, u_y) in 3D.
-std::vector<std::string> symmetry_boundaries(int dim);
+// The boundaries a symmetric body is cut by, and the displacement component each holds at
+// zero: {"symmetry"} (x = 0, u_x) in 2D; {"symmetry_x", "symmetry_y"} (x = 0, u_x and y = 0, u_y)
+// in 3D, or the one body.symmetry names. Empty without symmetry.
+std::vector<std::string> symmetry_boundaries(const BodySpec& body, int dim);
+// Whether a symmetry plane cuts the body at x_component = 0 (0: x, 1: y; only x in 2D).
+bool symmetric_about(const BodySpec& body, int component, int dim);
+// How many mirror copies of the modelled part make the whole body: 2 per plane.
+int symmetry_copies(const BodySpec& body, int dim);
+// body.symmetry as a scene writes it: "true", "false", or the one plane, "x" or "y".
+std::string symmetry_name(const BodySpec& body);
 int symmetry_component(const std::string& boundary);  // 0 for "symmetry" and "symmetry_x", 1 for "symmetry_y"
 
 // The same scene seen after its transform: obstacles and load vectors rotated, the transform

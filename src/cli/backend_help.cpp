@@ -22,6 +22,12 @@ std::string backends_help() {
     std::string line =
         "  " + registration->name + std::string(width + 2 - registration->name.size(), ' ') + registration->summary;
     if (!registration->available) line += " (not built into this copy)";
+    // The problems it solves (available_backends(ProblemKind)): friction is refused elsewhere.
+    std::vector<std::string> kinds;
+    for (ProblemKind kind : registration->problem_kinds) kinds.push_back(to_string(kind));
+    line += "; solves " + detail::join(kinds);
+    if (registration->problem_kinds.size() > 1 && registration->max_friction_directions < 2)
+      line += " (friction in 2D only)";
     if (!registration->option_names.empty())
       line += "; options " + detail::join(registration->option_names) +
               (registration->library_options ? " (and any other of its library's own)" : "");

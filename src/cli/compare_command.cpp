@@ -22,8 +22,9 @@ struct CompareArguments {
 
 constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
 
+// Empty: compare_scene() takes every available backend that solves the scene's kind of problem.
 std::vector<Backend> parse_backend_list(const std::string& text) {
-  if (text.empty()) return available_backends();
+  if (text.empty()) return {};
   std::vector<Backend> backends;
   std::set<Backend> seen;
   size_t start = 0;
@@ -101,6 +102,13 @@ int run_compare(const CompareArguments& arguments) {
                        run.result.timings.get("total") / report.linear_solve_seconds);
     std::cout << format("one factorisation of K %.3g s, one solve with it %.3g s; time in solves%s\n",
                         report.factorize_seconds, report.linear_solve_seconds, ratios.c_str());
+  }
+  for (const BackendRun& run : runs) {
+    const auto steps = run.result.diagnostics.find("fixed_point_steps");
+    if (steps != run.result.diagnostics.end())
+      std::cout << format("%s: Coulomb's fixed point in %.0f Tresca solves, last relative change %.2e\n",
+                          to_string(run.backend).c_str(), steps->second,
+                          run.result.diagnostics.at("fixed_point_change"));
   }
   for (const BackendRun& run : runs)
     if (run.result.status != Status::Converged)

@@ -40,6 +40,44 @@ std::string hertz_line(const char* label, const HertzComparison& h) {
                 100 * h.error_l2, h.radius, h.radius_source.c_str());
 }
 
+// With friction: the zone's tangential force and stick zone, and Mindlin's where it applies.
+std::string friction_lines(const FrictionZone& zone, int dim) {
+  const char* size = dim == 2 ? "half-width" : "radius";
+  std::string out = format("  friction     Q = %.6g, stick %s c = %.6g (%d stick, %d slip nodes)\n",
+                           zone.tangential_force, size, zone.stick_size, zone.stick_nodes, zone.slip_nodes);
+  if (const auto& m = zone.mindlin)
+    out += format(
+        "    mindlin    Q/(mu P) = %.3f: c = %.6g (error %+.2f%%), L2 traction error %.2f%% (mu = %g, beta = %.3f)\n",
+        m->load_ratio, m->stick_size, 100 * m->error_stick_size, 100 * m->error_l2, m->coefficient, m->dundurs_beta);
+  return out;
+}
+
+// One line per load step: its factors, how its solve ended, its contact's force and size.
+std::string step_lines(const RunReport& report) {
+  std::string out;
+  const bool solid = report.model->dim == 3;
+  for (size_t k = 0; k < report.steps.size(); ++k) {
+    const StepReport& step = report.steps[k];
+    std::string factors;
+    for (const auto& [name, factor] : step.factors)
+      factors += format("%s%s %g", factors.empty() ? "" : ", ", name.c_str(), factor);
+    // The step's zone: the obstacles', or the first pair's in a scene of bodies without obstacles.
+    double P = step.contact.total_force, size = solid ? step.contact.contact_radius : step.contact.half_width;
+    double Q = step.contact.tangential_force, stick = step.contact.stick_size;
+    if (step.contact.obstacles.empty() && !step.pairs.empty()) {
+      const PairContact& pair = step.pairs.front();
+      P = pair.total_force;
+      size = solid ? pair.contact_radius : pair.half_width;
+      Q = pair.friction ? pair.friction->tangential_force : 0.0;
+      stick = pair.friction ? pair.friction->stick_size : 0.0;
+    }
+    out += format("  step %-7zu %s: %s, %d iterations, %.3g s; P = %.6g, %s = %.6g", k + 1, factors.c_str(),
+                  to_string(step.status).c_str(), step.iterations, step.seconds, P, solid ? "a" : "b", size);
+    out += report.qp->friction.empty() ? "\n" : format(", Q = %.6g, c = %.6g\n", Q, stick);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string summary_table(const RunReport& report) {
@@ -51,8 +89,11 @@ std::string summary_table(const RunReport& report) {
   out += format("contactqp  %s\n", scene.source.c_str());
   const bool solid = model.dim == 3;
   out += format("  model        %s, %s%s, E = %g, nu = %g\n", to_string(scene.model).c_str(), body_text(model).c_str(),
-                scene.body.symmetry ? (solid ? " (quarter, symmetric)" : " (half, symmetric)") : "", scene.material.E,
-                scene.material.nu);
+                !scene.body.symmetry                          ? ""
+                : symmetry_copies(scene.body, model.dim) == 4 ? " (quarter, symmetric)"
+                : solid ? (" (half, symmetric about " + symmetry_name(scene.body) + " = 0)").c_str()
+                        : " (half, symmetric)",
+                scene.material.E, scene.material.nu);
   out += format("  mesh         %lld nodes, %lld %s (order %d), %lld DOFs, %lld contact candidates (gap <= %g)\n",
                 report.size.nodes, report.size.elements, solid ? "tetrahedra" : "triangles", model.mesh.order,
                 report.size.dofs, report.size.constraints, model.max_gap);
@@ -70,8 +111,9 @@ std::string summary_table(const RunReport& report) {
                   report.options.tol);
   out += format("  status       %s after %d iterations: %s\n", to_string(result.status).c_str(), result.iterations,
                 result.message.c_str());
-  out += format("  certificate  KKT stationarity %.2e, primal %.2e, dual %.2e, complementarity %.2e\n", c.stationarity,
-                c.primal_feasibility, c.dual_feasibility, c.complementarity);
+  out += format("  certificate  KKT stationarity %.2e, primal %.2e, dual %.2e, complementarity %.2e%s\n",
+                c.stationarity, c.primal_feasibility, c.dual_feasibility, c.complementarity,
+                report.qp->friction.empty() ? "" : format(", tangential %.2e", c.tangential).c_str());
   if (c.dual_available)
     out += format("               J = %.10g, theta = %.10g, gap = %.2e (relative %.2e)\n", c.objective,
                   c.dual_objective, c.duality_gap, c.relative_gap);
@@ -94,6 +136,7 @@ std::string summary_table(const RunReport& report) {
           "               half-width b = %.6g (last node %.6g), max pressure %.6g (other side %.6g), %d nodes\n",
           pair.half_width, pair.half_width_last_node, pair.max_pressure, pair.face_max_pressure, pair.contact_nodes);
     if (pair.hertz) out += hertz_line("  hertz     ", *pair.hertz);
+    if (pair.friction) out += friction_lines(*pair.friction, model.dim);
   }
   // The obstacles' line: always for one body; with bodies only when there are obstacles.
   if (model.bodies.empty() || !contact.obstacles.empty()) {
@@ -110,6 +153,8 @@ std::string summary_table(const RunReport& report) {
           contact.contact_nodes);
   }
   if (report.hertz) out += hertz_line("hertz       ", *report.hertz);
+  if (!contact.obstacles.empty() && contact.obstacles[contact.main_obstacle].friction)
+    out += friction_lines(*contact.obstacles[contact.main_obstacle].friction, model.dim);
   if (report.boussinesq) {
     const PunchComparison& b = *report.boussinesq;
     out += format(
@@ -133,6 +178,7 @@ std::string summary_table(const RunReport& report) {
                        f.y(), f.z())
               : format("  reaction     %s on \"%s\": (%.6g, %.6g)\n", r.load.c_str(), r.boundary.c_str(), f.x(), f.y());
   }
+  out += step_lines(report);
   std::string times;
   for (const auto& [phase, seconds] : report.timings.phases())
     if (phase != "total") times += format("%s %.3f, ", phase.c_str(), seconds);

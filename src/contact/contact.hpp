@@ -116,6 +116,32 @@ struct ContactRowEntries {
 };
 ContactRowEntries contact_row(const Model& model, const Candidate& candidate);
 
+// friction_rows.cpp: friction (friction.hpp, docs/friction.md).
+// The friction section that applies to a candidate's row, or nullptr (frictionless).
+const FrictionSpec* friction_of(const Model& model, const Candidate& candidate);
+// The row's unit normal (from the obstacle or the other body towards the node, global axes)
+// and its dim − 1 unit tangents: t = (n_y, −n_x) in 2D; in 3D t1 the scene's own x axis
+// (its y axis where n lies near x) across n, and t2 = n × t1. At a node with a prescribed
+// direction within 0.1 of the plane across n (a symmetry plane's normal) that direction is a
+// tangent (t2 in 3D, t1 = t2 × n normalised), so that its row vanishes once the prescribed
+// DOFs are eliminated; it leans off n's plane by the mesh normal's error only.
+Eigen::Vector3d row_normal(const Model& model, const Candidate& candidate);
+std::vector<Eigen::Vector3d> row_tangents(const Model& model, const Candidate& candidate);
+// The tangential rows over every DOF (free and prescribed), in the DOFs' frames: row
+// i·(dim − 1) + k is t_kᵀ(u_i − Σ_j N_j u_j) for candidate i.
+struct TangentialRow {
+  std::vector<std::pair<int, double>> entries;  // (DOF, coefficient)
+};
+std::vector<TangentialRow> tangential_rows(const Model& model);
+// Each tangential row's position for the free DOFs u and the model's prescribed values.
+Eigen::VectorXd tangential_positions(const Model& model, const Eigen::VectorXd& u);
+// qp.friction.offset = previous − (the prescribed values' part of each row): T u − offset is
+// then the slip since `previous` (the positions at the end of the last step).
+void set_friction_offset(const Model& model, QuadraticProgram& qp, const Eigen::VectorXd& previous);
+// Fills qp.friction (T, the bounds, the offset of a first step) when the scene has friction;
+// leaves it empty otherwise.
+void add_friction_rows(const Model& model, QuadraticProgram& qp);
+
 // One row of B and entry of g per candidate, in candidate order: −nᵀ u_i ≤ g_i (n of length
 // dim), u_i in the node's DOF frame, with the prescribed components of u_i moved into g.
 void add_contact_rows(const Model& model, QuadraticProgram& qp);

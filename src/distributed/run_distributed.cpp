@@ -8,6 +8,7 @@
 #include <algorithm>
 
 #include "backend_options.hpp"
+#include "contactqp/backend.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/linear_solver.hpp"
 #include "contactqp/processes.hpp"
@@ -89,6 +90,17 @@ bool takes_distributed_run(const Scene& scene, const RunOptions& options) {
 RunReport run_distributed(const Scene& scene, const RunOptions& options) {
   Stopwatch total;
   validate_options(scene.solver);
+  // What the distributed path does not model yet, refused as the one-process path refuses it.
+  if (!scene.steps.empty())
+    throw InputError("steps", "are not solved by a distributed run (the petsc backend under mpirun): run the scene "
+                              "on one process");
+  if (scene.friction_law() != FrictionLaw::None) {
+    const ProblemKind kind = scene.friction_law() == FrictionLaw::Tresca ? ProblemKind::Tresca : ProblemKind::Coulomb;
+    std::string others;
+    for (Backend other : available_backends(kind)) others += (others.empty() ? "" : ", ") + to_string(other);
+    throw InputError("backend", "= \"petsc\": does not solve " + to_string(kind) +
+                                    " problems (it solves frictionless ones); backends that do: " + others);
+  }
   const DistributedPdasOptions settings = pdas_options(scene.solver);
   const auto phase = [&options](const char* name) {
     begin_phase(name);  // where the ranks agree that none failed (run/phases.hpp)

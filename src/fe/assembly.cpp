@@ -35,6 +35,19 @@ void refuse_unrepresentable(const Model& model, const QuadraticProgram& qp) {
                                  qp.f.size() ? qp.f.cwiseAbs().maxCoeff() : 0.0, qp.f.allFinite());
 }
 
+// Force loads: f_a = Tᵀ f_x at each node (T its DOF frame); forces at prescribed DOFs go
+// to the reactions.
+void add_force_loads(const Model& model, Eigen::VectorXd& f) {
+  const int dim = model.dim;
+  for (int node = 0; node < model.mesh.n_nodes(); ++node) {
+    Eigen::VectorXd force = model.nodal_force.segment(dim * node, dim);
+    if (!model.frame_of_node.empty() && model.frame_of_node[node] >= 0)
+      force = dof_frame(model, node).transpose() * force;
+    for (int c = 0; c < dim; ++c)
+      if (model.free_index[dim * node + c] >= 0) f[model.free_index[dim * node + c]] += force[c];
+  }
+}
+
 }  // namespace
 
 namespace detail {
@@ -67,7 +80,6 @@ Eigen::MatrixXd dof_frame_rotated(const Model& model, const int* v, int npe, Eig
 QuadraticProgram assemble_qp(Model& model, const std::vector<char>& elements) {
   Stopwatch clock;
   const Mesh& mesh = model.mesh;
-  const int dim = mesh.dim;
   if (!elements.empty() && static_cast<int>(elements.size()) != mesh.n_elements())
     throw InputError("elements", "has " + std::to_string(elements.size()) + " entries for " +
                                      std::to_string(mesh.n_elements()) + " elements");
@@ -75,21 +87,41 @@ QuadraticProgram assemble_qp(Model& model, const std::vector<char>& elements) {
   QuadraticProgram qp;
   qp.f = Eigen::VectorXd::Zero(model.n_free);
   detail::assemble_stiffness(model, elements, qp.K, qp.f);
-  // Force loads: f_a = Tᵀ f_x at each node (T its DOF frame); forces at prescribed DOFs go
-  // to the reactions.
-  for (int node = 0; node < mesh.n_nodes(); ++node) {
-    Eigen::VectorXd force = model.nodal_force.segment(dim * node, dim);
-    if (!model.frame_of_node.empty() && model.frame_of_node[node] >= 0)
-      force = dof_frame(model, node).transpose() * force;
-    for (int c = 0; c < dim; ++c)
-      if (model.free_index[dim * node + c] >= 0) qp.f[model.free_index[dim * node + c]] += force[c];
-  }
+  add_force_loads(model, qp.f);
   refuse_unrepresentable(model, qp);
   detail::add_contact_rows(model, qp);
+  detail::add_friction_rows(model, qp);                  // nothing without friction
   qp.near_null_space = detail::rigid_body_modes(model);  // for AMG in an iterative solver of K
   qp.coarse_space = detail::p1_coarse_space(model);      // for its P1 level (quadratic elements)
   model.timings.add("assemble", clock.seconds());
   return qp;
+}
+
+void apply_load_step(Model& model, QuadraticProgram& qp, const std::vector<double>& factors, const std::string& step) {
+  const int n = static_cast<int>(model.prescribed.size());
+  Eigen::VectorXd prescribed = Eigen::VectorXd::Zero(n), nodal_force = Eigen::VectorXd::Zero(n);
+  std::vector<int> prescribed_by(n, -1);  // the load that set each DOF
+  for (size_t l = 0; l < model.load_shares.size(); ++l) {
+    const LoadShare& share = model.load_shares[l];
+    nodal_force += factors[l] * share.nodal_force;
+    for (const auto& [dof, value] : share.prescribed) {
+      const double scaled = factors[l] * value;
+      const int other = prescribed_by[dof];
+      if (other >= 0 &&
+          std::abs(prescribed[dof] - scaled) > 1e-12 * std::max(std::abs(scaled), std::abs(prescribed[dof])))
+        throw InputError(step, "prescribes node " + std::to_string(dof / model.dim) + " by " +
+                                   model.scene.loads[other].path + " and by " + model.scene.loads[l].path +
+                                   " to different values (" + detail::format_value(prescribed[dof]) + " and " +
+                                   detail::format_value(scaled) + "): scale them alike");
+      prescribed[dof] = scaled;
+      prescribed_by[dof] = static_cast<int>(l);
+    }
+  }
+  model.prescribed = prescribed;
+  model.nodal_force = nodal_force;
+  qp.f = detail::prescribed_forces(model);
+  add_force_loads(model, qp.f);
+  detail::add_contact_rows(model, qp);  // the same B; g with this step's prescribed values
 }
 
 Eigen::VectorXd full_displacement(const Model& model, const Eigen::VectorXd& u) {

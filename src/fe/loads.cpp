@@ -133,9 +133,8 @@ Eigen::VectorXd nodal_forces(const Scene& scene, const Mesh& mesh, const std::ve
   // A point load on a symmetry plane: the modelled part carries its share of the force
   // (half on one plane, a quarter on the axis where two planes meet).
   std::vector<int> planes_of_node(mesh.n_nodes(), 0);
-  if (scene.body.symmetry)
-    for (const std::string& plane : symmetry_boundaries(dim))
-      for (int node : boundary_nodes(mesh, plane)) ++planes_of_node[node];
+  for (const std::string& plane : symmetry_boundaries(scene.body, dim))
+    for (int node : boundary_nodes(mesh, plane)) ++planes_of_node[node];
   for (size_t l = 0; l < scene.loads.size(); ++l) {
     const LoadSpec& load = scene.loads[l];
     if (const auto* traction = load.as<TractionLoad>()) {
@@ -156,6 +155,24 @@ Eigen::VectorXd nodal_forces(const Scene& scene, const Mesh& mesh, const std::ve
     }
   }
   return f;
+}
+
+std::vector<LoadShare> load_shares(const Model& model, const std::vector<int>& point_nodes) {
+  const int dim = model.mesh.dim;
+  std::vector<LoadShare> shares;
+  for (size_t l = 0; l < model.scene.loads.size(); ++l) {
+    const LoadSpec& load = model.scene.loads[l];
+    Scene one = model.scene;  // the load alone
+    one.loads = {load};
+    LoadShare share;
+    share.nodal_force = nodal_forces(one, model.mesh, {point_nodes[l]});
+    if (const auto* d = load.as<DisplacementLoad>())
+      for (int node : boundary_nodes(model.mesh, d->boundary))
+        for (int c = 0; c < dim; ++c)
+          if (d->value[c]) share.prescribed.emplace_back(dim * node + c, *d->value[c]);
+    shares.push_back(std::move(share));
+  }
+  return shares;
 }
 
 }  // namespace contactqp::detail

@@ -172,4 +172,34 @@ void assemble_stiffness(const Model& model, const std::vector<char>& elements, E
   }
 }
 
+Eigen::VectorXd prescribed_forces(const Model& model) {
+  const Mesh& mesh = model.mesh;
+  const std::vector<ElementLaw> laws = element_laws(model);
+  const int npe = mesh.nodes_per_element(), dim = mesh.dim;
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(model.n_free);
+  std::vector<Eigen::Vector3d> coordinates(npe);
+  for (int e = 0; e < mesh.n_elements(); ++e) {
+    const int* v = mesh.element(e);
+    bool loaded = false;
+    for (int i = 0; i < npe; ++i)
+      for (int c = 0; c < dim; ++c)
+        loaded = loaded || (model.free_index[dim * v[i] + c] < 0 && model.prescribed[dim * v[i] + c] != 0);
+    if (!loaded) continue;
+    for (int i = 0; i < npe; ++i) coordinates[i] = mesh.nodes[v[i]];
+    const Eigen::MatrixXd k =
+        dof_frame_rotated(model, v, npe,
+                          element_stiffness(mesh.type(), coordinates.data(), laws[body_of_element(model, e)],
+                                            model.scene.body.thickness));
+    for (int i = 0; i < dim * npe; ++i) {
+      const int row = model.free_index[dim * v[i / dim] + i % dim];
+      if (row < 0) continue;
+      for (int j = 0; j < dim * npe; ++j) {
+        const int dof = dim * v[j / dim] + j % dim;
+        if (model.free_index[dof] < 0) f[row] -= k(i, j) * model.prescribed[dof];
+      }
+    }
+  }
+  return f;
+}
+
 }  // namespace contactqp::detail

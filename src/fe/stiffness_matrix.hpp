@@ -21,5 +21,9 @@ Eigen::MatrixXd dof_frame_rotated(const Model& model, const int* v, int npe, Eig
 // InputError when K (its largest entry, whether all are finite) or f leave double precision:
 // units so far from one that the numbers overflow or lose their digits (assembly.cpp).
 void refuse_unrepresentable(const Model& model, double largest_k, bool k_finite, double largest_f, bool f_finite);
+// −K_free,prescribed · u_prescribed over the free DOFs, for the model's prescribed values: the
+// prescribed displacements' share of f on its own, for a load step (apply_load_step). Only the
+// elements with a non-zero prescribed DOF are visited.
+Eigen::VectorXd prescribed_forces(const Model& model);
 
 }  // namespace contactqp::detail

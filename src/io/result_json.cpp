@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "contact/contact.hpp"
 #include "contactqp/io.hpp"
 
 namespace contactqp {
@@ -60,6 +61,32 @@ json boussinesq_json(const PunchComparison& b) {
           {"shape_error", number(b.shape_error)}};
 }
 
+json mindlin_json(const MindlinComparison& m) {
+  const bool two_d = m.dim == 2;
+  return {{"coefficient", number(m.coefficient)},
+          {"normal_force", number(m.normal_force)},
+          {"tangential_force", number(m.tangential_force)},
+          {"load_ratio", number(m.load_ratio)},
+          {"dundurs_beta", number(m.dundurs_beta)},
+          {two_d ? "half_width" : "contact_radius", number(m.half_width)},
+          {"max_pressure", number(m.max_pressure)},
+          {two_d ? "stick_half_width" : "stick_radius", number(m.stick_size)},
+          {two_d ? "stick_half_width_computed" : "stick_radius_computed", number(m.stick_size_computed)},
+          {two_d ? "error_stick_half_width" : "error_stick_radius", number(m.error_stick_size)},
+          {"error_l2", number(m.error_l2)},
+          {"slip_displacement", number(m.slip_displacement)}};
+}
+
+// The friction entries of a contact zone, added to its object (obstacle, pair or the summary).
+void add_friction(json& entry, const FrictionZone& zone, int dim) {
+  entry["tangential_force"] = number(zone.tangential_force);
+  entry["tangential_resultant"] = vector_json(zone.resultant, dim);
+  entry[dim == 2 ? "stick_half_width" : "stick_radius"] = number(zone.stick_size);
+  entry["stick_nodes"] = zone.stick_nodes;
+  entry["slip_nodes"] = zone.slip_nodes;
+  if (zone.mindlin) entry["mindlin"] = mindlin_json(*zone.mindlin);
+}
+
 json obstacles_json(const Model& model, const ContactSummary& contact) {
   json list = json::array();
   const int dim = model.dim;
@@ -82,6 +109,7 @@ json obstacles_json(const Model& model, const ContactSummary& contact) {
     entry["contact_nodes"] = o.contact_nodes;
     entry["profile"] = profile_json(o.profile);
     if (const auto hertz = compare_with_hertz(model, o)) entry["hertz"] = hertz_json(*hertz);
+    if (o.friction) add_friction(entry, *o.friction, dim);
     list.push_back(entry);
   }
   return list;
@@ -92,6 +120,7 @@ json scene_json(const Model& model) {
   constexpr double kDegrees = 180 / 3.14159265358979323846;
   json out = {{"source", scene.source},          {"model", to_string(scene.model)}, {"E", number(scene.material.E)},
               {"nu", number(scene.material.nu)}, {"shape", scene.body.shape},       {"symmetry", scene.body.symmetry}};
+  if (symmetry_copies(scene.body, model.dim) == 2 && model.dim == 3) out["symmetry"] = symmetry_name(scene.body);
   if (model.dim == 2) {
     out["thickness"] = number(scene.body.thickness);
     out["rotate_degrees"] = number(std::atan2(model.rotation(1, 0), model.rotation(0, 0)) * kDegrees);
@@ -115,6 +144,56 @@ json timings_json(const Timings& timings) {
   for (const char* phase : kRequiredPhases) out[phase] = number(timings.get(phase));
   for (const auto& [phase, seconds] : timings.phases()) out[phase] = number(seconds);
   return out;
+}
+
+json reactions_json(const std::vector<Reaction>& reactions, int dim) {
+  json supports = json::array();
+  for (const Reaction& r : reactions)
+    supports.push_back({{"load", r.load}, {"boundary", r.boundary}, {"force", vector_json(r.force, dim)}});
+  return supports;
+}
+
+// Each load step's summary: its factors, how its solve went, its contact's force and size.
+json steps_json(const RunReport& report, int dim) {
+  json list = json::array();
+  const char* size = dim == 2 ? "half_width" : "contact_radius";
+  const char* stick = dim == 2 ? "stick_half_width" : "stick_radius";
+  for (const StepReport& step : report.steps) {
+    json factors = json::object();
+    for (const auto& [name, factor] : step.factors) factors[name] = number(factor);
+    json entry = {{"step", step.path},
+                  {"factors", factors},
+                  {"status", to_string(step.status)},
+                  {"message", step.message},
+                  {"iterations", step.iterations},
+                  {"seconds", number(step.seconds)}};
+    for (const auto& [name, value] : step.diagnostics) entry["diagnostics"][name] = number(value);
+    const ContactSummary& c = step.contact;
+    entry["total_force"] = number(c.total_force);
+    entry[size] = number(dim == 2 ? c.half_width : c.contact_radius);
+    if (!report.qp->friction.empty()) {
+      entry["tangential_force"] = number(c.tangential_force);
+      entry[stick] = number(c.stick_size);
+      const auto& main = c.obstacles.empty() ? std::nullopt : c.obstacles[c.main_obstacle].friction;
+      if (main && main->mindlin) entry["mindlin"] = mindlin_json(*main->mindlin);
+    }
+    json pairs = json::array();
+    for (const PairContact& pair : step.pairs) {
+      json p = {{"total_force", number(pair.total_force)},
+                {"force_on_node_body", vector_json(pair.force_on_node_body, dim)},
+                {size, number(dim == 2 ? pair.half_width : pair.contact_radius)}};
+      if (pair.friction) {
+        p["tangential_force"] = number(pair.friction->tangential_force);
+        p[stick] = number(pair.friction->stick_size);
+        if (pair.friction->mindlin) p["mindlin"] = mindlin_json(*pair.friction->mindlin);
+      }
+      pairs.push_back(p);
+    }
+    if (!pairs.empty()) entry["pairs"] = pairs;
+    entry["reactions"] = reactions_json(step.reactions, dim);
+    list.push_back(entry);
+  }
+  return list;
 }
 
 }  // namespace
@@ -146,6 +225,7 @@ std::string result_json(const RunReport& report) {
                 {"dual_feasibility", number(c.dual_feasibility)},
                 {"complementarity", number(c.complementarity)},
                 {"max", number(c.kkt_max())}};
+  if (!qp.friction.empty()) out["kkt"]["tangential"] = number(c.tangential);
 
   const ContactSummary& contact = report.contact;
   const int dim = model.dim;
@@ -164,6 +244,10 @@ std::string result_json(const RunReport& report) {
     zone["contact_area"] = number(contact.contact_area);
     zone["contact_radius"] = number(contact.contact_radius);
     zone["contact_radius_last_node"] = number(contact.contact_radius_last_node);
+  }
+  if (report.friction) {
+    zone["tangential_force"] = number(contact.tangential_force);
+    zone[dim == 2 ? "stick_half_width" : "stick_radius"] = number(contact.stick_size);
   }
   if (report.hertz) out["hertz"] = hertz_json(*report.hertz);
   if (report.boussinesq) out["boussinesq"] = boussinesq_json(*report.boussinesq);
@@ -212,14 +296,12 @@ std::string result_json(const RunReport& report) {
         entry["contact_radius_last_node"] = number(pair.contact_radius_last_node);
       }
       if (pair.hertz) entry["hertz"] = hertz_json(*pair.hertz);
+      if (pair.friction) add_friction(entry, *pair.friction, dim);
       pairs.push_back(entry);
     }
     out["pairs"] = pairs;
   }
-  json supports = json::array();
-  for (const Reaction& r : report.reactions)
-    supports.push_back({{"load", r.load}, {"boundary", r.boundary}, {"force", vector_json(r.force, dim)}});
-  out["reactions"] = supports;
+  out["reactions"] = reactions_json(report.reactions, dim);
   json solver = {{"tol", number(report.options.tol)}, {"max_iterations", report.options.max_iterations}};
   for (const auto& [name, value] : report.result.diagnostics) solver[name] = number(value);
   out["solver"] = solver;
@@ -244,13 +326,53 @@ std::string result_json(const RunReport& report) {
         {"solves", d.count("spectrum_solves") ? static_cast<int>(d.at("spectrum_solves")) : 0},
         {"seconds", number(report.timings.get("spectrum"))}};
   }
+  if (!qp.friction.empty()) out["friction"] = {{"law", to_string(qp.friction.law)}};
+  if (!report.steps.empty()) out["steps"] = steps_json(report, dim);
   out["timings"] = timings_json(report.timings);
   out["scene"] = scene_json(model);
   out["warnings"] = report.warnings;
   return out.dump(2) + "\n";
 }
 
+namespace {
+
+// With friction: the profile of every obstacle and every pair's node side, with the friction
+// traction along the zone's tangential resultant (along the row's first tangent where the
+// resultant vanishes), Mindlin's traction where it applies, the state and the node's position.
+std::string friction_profile_csv(const RunReport& report) {
+  std::ostringstream out;
+  out << std::setprecision(12);
+  const Model& model = *report.model;
+  const FrictionFields& fields = *report.friction;
+  const int dim = model.dim;
+  out << (dim == 2 ? "s" : "r")
+      << ",pressure,force,hertz_pressure,obstacle,pair,tangential_traction,mindlin_traction,state,x,y,z\n";
+  auto rows = [&](const std::vector<ContactProfilePoint>& profile, const std::optional<HertzComparison>& hertz,
+                  const FrictionZone& zone, double centre, int obstacle, int pair) {
+    for (const ContactProfilePoint& point : profile) {
+      const int i = point.row;
+      const double x = dim == 2 ? point.s - centre : point.s;
+      Eigen::Vector3d along = zone.resultant;
+      if (!(zone.tangential_force > 0)) along = detail::row_tangents(model, model.candidates[i]).front();
+      out << point.s << ',' << point.pressure << ',' << point.force << ',';
+      if (hertz) out << hertz_pressure(*hertz, x);
+      out << ',' << obstacle << ',' << pair << ',' << fields.traction[i].dot(along.normalized()) << ',';
+      if (zone.mindlin) out << mindlin_traction(*zone.mindlin, x);
+      const Eigen::Vector3d& p = model.mesh.nodes[point.node];
+      out << ',' << fields.state[i] << ',' << p.x() << ',' << p.y() << ',' << p.z() << '\n';
+    }
+  };
+  for (const ObstacleContact& contact : report.contact.obstacles)
+    rows(contact.profile, compare_with_hertz(model, contact), *contact.friction, contact.centre, contact.obstacle, -1);
+  for (const PairContact& pair : report.pairs)
+    rows(pair.profile, pair.hertz, *pair.friction, pair.centre, -1, pair.pair);
+  return out.str();
+}
+
+}  // namespace
+
 std::string profile_csv(const RunReport& report) {
+  if (report.friction) return friction_profile_csv(report);
   std::ostringstream out;
   out << std::setprecision(12);
   const Model& model = *report.model;

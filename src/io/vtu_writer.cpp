@@ -141,6 +141,25 @@ ContactFields contact_fields(const RunReport& report, const Eigen::VectorXd& dis
   return fields;
 }
 
+// With friction, at each node of a row's node side: the friction traction and this step's slip
+// (vectors, the sums over the node's rows) and the state (the largest over its rows: 0 gap,
+// 1 stick, 2 slip).
+struct FrictionNodeFields {
+  Eigen::VectorXd traction, slip, state;
+};
+
+FrictionNodeFields friction_node_fields(const Model& model, const FrictionFields& fields) {
+  const int n = model.mesh.n_nodes(), dim = model.dim;
+  FrictionNodeFields out{Eigen::VectorXd::Zero(dim * n), Eigen::VectorXd::Zero(dim * n), Eigen::VectorXd::Zero(n)};
+  for (size_t i = 0; i < model.candidates.size(); ++i) {
+    const int node = model.candidates[i].node;
+    out.traction.segment(dim * node, dim) += fields.traction[i].head(dim);
+    out.slip.segment(dim * node, dim) += fields.slip[i].head(dim);
+    out.state[node] = std::max(out.state[node], static_cast<double>(fields.state[i]));
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string vtu_piece(const Mesh& mesh, const std::vector<PointArray>& arrays) {
@@ -230,7 +249,17 @@ std::string vtu_document(const RunReport& report) {
     for (size_t b = 0; b < model.bodies.size(); ++b)
       body.segment(model.bodies[b].first_node, model.bodies[b].n_nodes).setConstant(static_cast<double>(b));
   }
-  return vtu_piece(model.mesh, solution_arrays(model, displacement, stress, contact, body.size() ? &body : nullptr));
+  std::vector<PointArray> arrays = solution_arrays(model, displacement, stress, contact);
+  // With friction: the friction traction, this step's slip and the state (before "body").
+  FrictionNodeFields friction;
+  if (report.friction) {
+    friction = friction_node_fields(model, *report.friction);
+    arrays.push_back(vector_array("tangential_traction", friction.traction, model.dim));
+    arrays.push_back(vector_array("slip", friction.slip, model.dim));
+    arrays.push_back(scalar_array("contact_state", friction.state));
+  }
+  if (body.size()) arrays.push_back(scalar_array("body", body));
+  return vtu_piece(model.mesh, arrays);
 }
 
 }  // namespace contactqp

@@ -35,7 +35,8 @@ struct UnitBox {
 
 UnitBox unit_box(const BoxMeshRequest& request) {
   const double w = unit_length(request.width, request.height), d = unit_length(request.depth, request.height);
-  return {request.symmetry ? 0.0 : -w / 2, w / 2, request.symmetry ? 0.0 : -d / 2, d / 2};
+  const bool cut_x = request.symmetry && request.symmetry_x, cut_y = request.symmetry && request.symmetry_y;
+  return {cut_x ? 0.0 : -w / 2, w / 2, cut_y ? 0.0 : -d / 2, d / 2};
 }
 
 // The area of the body's points at distance d > 0 from the fine disc (centre c, radius r):
@@ -98,9 +99,9 @@ Mesh mesh_box(const BoxMeshRequest& request) {
   };
   const Side sides[] = {{"bottom", 2, 0.0},
                         {"top", 2, 1.0},
-                        {request.symmetry ? "symmetry_x" : "left", 0, box.x0},
+                        {box.x0 == 0 ? "symmetry_x" : "left", 0, box.x0},
                         {"right", 0, box.x1},
-                        {request.symmetry ? "symmetry_y" : "front", 1, box.y0},
+                        {box.y0 == 0 ? "symmetry_y" : "front", 1, box.y0},
                         {"back", 1, box.y1}};
   gmsh::vectorpair faces;
   gmsh::model::getEntities(faces, 2);

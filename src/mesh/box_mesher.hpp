@@ -19,6 +19,8 @@ namespace contactqp::detail {
 struct BoxMeshRequest {
   double width = 1, depth = 1, height = 1;
   bool symmetry = false;
+  // With symmetry, the cuts: both (the quarter) or one (the half x ≥ 0 or y ≥ 0).
+  bool symmetry_x = true, symmetry_y = true;
   double size = 0.1;                                      // far-field element size (length)
   double contact_size = 0.01;                             // element size on the fine disc (length)
   double grading = 0.1;                                   // size growth per unit distance from the fine disc

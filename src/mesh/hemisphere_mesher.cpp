@@ -46,7 +46,7 @@ double volume_within(double rho) {
 }  // namespace
 
 double estimate_hemisphere_elements(const HemisphereMeshRequest& request) {
-  const double quarter = request.symmetry ? 0.25 : 1.0;
+  const double quarter = request.symmetry ? (request.symmetry_x && request.symmetry_y ? 0.25 : 0.5) : 1.0;
   const double fine = std::min(unit_fine_radius(request), std::sqrt(2.0));
   return estimate_graded_tetrahedra(unit_sizes(request), quarter * 2 * kPi / 3, quarter * volume_within(fine),
                                     [quarter, fine](double d) { return quarter * shell_area(fine + d); });
@@ -70,7 +70,8 @@ CoarseMesh coarse_hemisphere(const HemisphereMeshRequest& request) {
   // The half ball is the ball cut by the slab (or the quarter slab) z ∈ [0, 1]: OpenCASCADE
   // gives it a spherical face, a flat top and, for the quarter, two planar faces.
   const int ball = occ::addSphere(0, 0, 1, 1);
-  const int slab = request.symmetry ? occ::addBox(0, 0, 0, 1.5, 1.5, 1) : occ::addBox(-1.5, -1.5, 0, 3, 3, 1);
+  const bool cut_x = request.symmetry && request.symmetry_x, cut_y = request.symmetry && request.symmetry_y;
+  const int slab = occ::addBox(cut_x ? 0 : -1.5, cut_y ? 0 : -1.5, 0, cut_x ? 1.5 : 3, cut_y ? 1.5 : 3, 1);
   gmsh::vectorpair body;
   std::vector<gmsh::vectorpair> map;
   occ::intersect({{3, ball}}, {{3, slab}}, body, map);
@@ -87,9 +88,9 @@ CoarseMesh coarse_hemisphere(const HemisphereMeshRequest& request) {
     gmsh::model::getBoundingBox(dim, tag, x0, y0, z0, x1, y1, z1);
     if (z0 > 1 - tolerance)
       top.push_back(tag);
-    else if (request.symmetry && x1 < tolerance)
+    else if (cut_x && x1 < tolerance)
       symmetry_x.push_back(tag);
-    else if (request.symmetry && y1 < tolerance)
+    else if (cut_y && y1 < tolerance)
       symmetry_y.push_back(tag);
     else
       surface.push_back(tag);
@@ -99,10 +100,8 @@ CoarseMesh coarse_hemisphere(const HemisphereMeshRequest& request) {
   };
   name(2, surface, "surface");
   name(2, top, "top");
-  if (request.symmetry) {
-    name(2, symmetry_x, "symmetry_x");
-    name(2, symmetry_y, "symmetry_y");
-  }
+  if (cut_x) name(2, symmetry_x, "symmetry_x");
+  if (cut_y) name(2, symmetry_y, "symmetry_y");
   std::vector<int> volumes;
   for (const auto& [dim, tag] : body) volumes.push_back(tag);
   gmsh::model::addPhysicalGroup(3, volumes);

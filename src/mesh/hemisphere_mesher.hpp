@@ -9,7 +9,8 @@
 namespace contactqp::detail {
 
 // The body is the lower half of the ball of radius R centred at (0, 0, R): its flat top is the
-// disc z = R, its lowest point (0, 0, 0). With symmetry, the quarter x ≥ 0, y ≥ 0 of it.
+// disc z = R, its lowest point (0, 0, 0). With symmetry, the quarter x ≥ 0, y ≥ 0 of it (or
+// the half beside one cut).
 //
 // The fine zone is the ball of radius fine_radius around the lowest point: the element size
 // is contact_size within it and grows by `grading` per unit distance from it up to `size`,
@@ -19,6 +20,8 @@ namespace contactqp::detail {
 struct HemisphereMeshRequest {
   double radius = 1;
   bool symmetry = false;
+  // With symmetry, the cuts: both (the quarter) or one (the half x ≥ 0 or y ≥ 0).
+  bool symmetry_x = true, symmetry_y = true;
   double size = 0.1;           // far-field element size (length)
   double contact_size = 0.01;  // element size in the fine zone (length)
   double grading = 0.25;       // size growth per unit distance from the fine zone

@@ -249,6 +249,11 @@ Model build_bodies_model(const Scene& scene, const BuildOptions& options) {
     const std::vector<int> point_nodes = point_load_nodes(one, part.mesh, model.warnings);
     part.nodal_force = nodal_forces(one, part.mesh, point_nodes);
     const int first_node = model.mesh.n_nodes();
+    if (!scene.steps.empty())  // the body's loads' shares, their DOFs moved to the body's block
+      for (LoadShare& share : load_shares(part, point_nodes)) {
+        for (auto& entry : share.prescribed) entry.first += dim * first_node;
+        model.load_shares.push_back(std::move(share));
+      }
     append(model, part, body, one);
     for (LoadSpec load : body.loads) {  // the scene's loads, named by the merged mesh's boundaries
       if (std::string* boundary = load.boundary()) *boundary = body.name + "." + *boundary;
@@ -307,6 +312,17 @@ Model build_bodies_model(const Scene& scene, const BuildOptions& options) {
     model.scene.contact.boundary =
         scene.bodies[scene.obstacle_contacts.front().body].name + "." + scene.obstacle_contacts.front().boundary;
   remove_prescribed_candidates(model);
+  // Each load's nodal forces over the whole mesh: zero outside its body's block.
+  for (size_t l = 0, b = 0, in_body = 0; l < model.load_shares.size(); ++l, ++in_body) {
+    while (in_body >= scene.bodies[b].loads.size()) {
+      ++b;
+      in_body = 0;
+    }
+    Eigen::VectorXd whole = Eigen::VectorXd::Zero(model.prescribed.size());
+    whole.segment(dim * model.bodies[b].first_node, model.load_shares[l].nodal_force.size()) =
+        model.load_shares[l].nodal_force;
+    model.load_shares[l].nodal_force = whole;
+  }
   model.timings.add("model", clock.seconds() - mesh_seconds);
   return model;
 }

@@ -157,6 +157,8 @@ CoarseMesh coarse_hemisphere_body(const Scene& scene, double max_gap, const Buil
   HemisphereMeshRequest request;
   request.radius = body.radius;
   copy_mesh_spec(body, request);
+  request.symmetry_x = body.symmetry_x;
+  request.symmetry_y = body.symmetry_y;
   request.refinements = body.mesh.refinements;
   // The sphere's lower half seen from its lowest point: at horizontal distance r, direction θ.
   const double R = body.radius;
@@ -178,6 +180,8 @@ Mesh mesh_box_body(const Scene& scene, double max_gap, const BuildOptions& optio
   request.depth = body.depth;
   request.height = body.height;
   copy_mesh_spec(body, request);
+  request.symmetry_x = body.symmetry_x;
+  request.symmetry_y = body.symmetry_y;
   // The contact face is the bottom z = 0 (the only one the box's scenes press so far).
   auto surface = [](double r, double angle) { return Eigen::Vector3d(r * std::cos(angle), r * std::sin(angle), 0.0); };
   auto outward = [](double, double) { return Eigen::Vector3d(0, 0, -1); };

@@ -40,9 +40,8 @@ void apply_displacement_conditions(Model& model, const Scene& scene, const Eigen
       for (int c = 0; c < dim; ++c)
         if (d->value[c]) prescribe(model, dim * node + c, *d->value[c], load.path + ".value");
   }
-  if (scene.body.symmetry)
-    for (const std::string& plane : symmetry_boundaries(dim))
-      for (int node : nodes_of(plane)) prescribe(model, dim * node + symmetry_component(plane), 0.0, "body.symmetry");
+  for (const std::string& plane : symmetry_boundaries(scene.body, dim))
+    for (int node : nodes_of(plane)) prescribe(model, dim * node + symmetry_component(plane), 0.0, "body.symmetry");
   model.n_free = 0;
   for (int& index : model.free_index) index = index == 0 ? model.n_free++ : -1;
 

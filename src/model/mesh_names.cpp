@@ -41,10 +41,11 @@ void check_mesh_names(const Scene& scene, const Mesh& mesh) {
   }
   require_name(mesh.boundaries, scene.contact.boundary, "contact.boundary", boundary_group, file);
   if (!scene.body.symmetry) return;
-  // The modelled part is x ≥ 0 (and y ≥ 0 in 3D) with its cuts on x = 0 (and y = 0).
+  // The modelled part is x ≥ 0 (and y ≥ 0 in 3D) with its cuts on x = 0 (and y = 0), or in 3D
+  // the half beside the one plane body.symmetry names.
   double extent = 0;
   for (const Eigen::Vector3d& x : mesh.nodes) extent = std::max(extent, x.cwiseAbs().maxCoeff());
-  for (const std::string& plane : symmetry_boundaries(mesh.dim)) {
+  for (const std::string& plane : symmetry_boundaries(scene.body, mesh.dim)) {
     const int c = symmetry_component(plane);
     const std::string axis = c == 0 ? "x" : "y";
     if (!mesh.boundaries.count(plane))
@@ -58,9 +59,10 @@ void check_mesh_names(const Scene& scene, const Mesh& mesh) {
     double lowest = 0;
     for (const Eigen::Vector3d& x : mesh.nodes) lowest = std::min(lowest, x[c]);
     if (lowest < -1e-9 * extent)
-      throw InputError("body.symmetry", "= true: " + file + " reaches " + axis + " = " + format_value(lowest) +
-                                            " < 0; with symmetry the mesh is the part " +
-                                            (solid ? "x ≥ 0, y ≥ 0" : "x ≥ 0"));
+      throw InputError("body.symmetry",
+                       "= true: " + file + " reaches " + axis + " = " + format_value(lowest) +
+                           " < 0; with symmetry the mesh is the part " +
+                           (solid && symmetry_copies(scene.body, 3) == 4 ? "x ≥ 0, y ≥ 0" : axis + " ≥ 0"));
   }
 }
 

@@ -135,6 +135,7 @@ Model build_model(const Scene& scene, const BuildOptions& options) {
   detail::rotate_mesh(model.mesh, model.rotation);
   detail::apply_displacement_conditions(model, scene, model.rotation);
   model.nodal_force = detail::nodal_forces(model.scene, model.mesh, point_nodes);
+  if (!scene.steps.empty()) model.load_shares = detail::load_shares(model, point_nodes);
 
   detail::warn_near_incompressible(scene, model.mesh, model.warnings);
   model.timings.add("model", clock.seconds());

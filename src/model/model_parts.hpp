@@ -62,4 +62,9 @@ Eigen::VectorXd nodal_forces(const Scene& scene, const Mesh& mesh, const std::ve
 // its `at`, or its named point. Adds a warning when that node is far from `at`.
 std::vector<int> point_load_nodes(const Scene& scene, const Mesh& mesh, std::vector<std::string>& warnings);
 
+// ../fe/loads.cpp: each load's share (model.hpp's LoadShare) on the model's mesh: its nodal
+// forces (point loads at point_nodes[l]) and the DOFs it prescribes, for the loads of
+// model.scene (global frame; displacement values along the DOF frames).
+std::vector<LoadShare> load_shares(const Model& model, const std::vector<int>& point_nodes);
+
 }  // namespace contactqp::detail

@@ -53,11 +53,9 @@ void measure(ObstacleContact& contact, bool symmetry, const Eigen::Vector3d& axi
 // the contact radius, the loaded area. `points` are the candidates' initial positions.
 void measure_3d(const Model& model, ObstacleContact& contact, const std::vector<Eigen::Vector3d>& points,
                 const std::vector<double>& tributary, double lambda_max) {
-  const bool symmetry = model.scene.body.symmetry;
-  const double copies = symmetry ? 4.0 : 1.0;
-  const Eigen::Vector3d axis = model.rotation.col(2);  // the scene's own z: the symmetry planes' common line
-  // With symmetry the four quarters' resultants add along the axis and cancel across it.
-  if (symmetry) contact.resultant = copies * contact.resultant.dot(axis) * axis;
+  const double copies = mirror_copies(model);
+  // With symmetry the mirrored parts' resultants add along the cuts and cancel across them.
+  contact.resultant = whole_body_sum(model, contact.resultant);
   const double loaded = 1e-8 * lambda_max;
   double sum = 0;
   Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
@@ -75,7 +73,7 @@ void measure_3d(const Model& model, ObstacleContact& contact, const std::vector<
   contact.line_load = contact.total_force;
   if (!(sum > 0)) return;
   Eigen::Vector3d centre = first_moment / sum;
-  if (symmetry) centre = centre.dot(axis) * axis;
+  centre = mirror_mean(model, centre);
   contact.centre_point = centre;
   const Eigen::Vector3d n = detail::project(model.scene.obstacles[contact.obstacle], centre).normal;
   double second_moment = 0;
@@ -162,6 +160,7 @@ ContactSummary summarize_contact_rows(const Model& model, const QuadraticProgram
     ContactProfilePoint point;
     point.node = candidate.node;
     point.obstacle = candidate.obstacle;
+    point.row = i;
     if (!solid) point.s = detail::surface_coordinate(obstacle, x, origins[candidate.obstacle]);
     point.force = lambda[i];
     summary.obstacles[candidate.obstacle].profile.push_back(point);

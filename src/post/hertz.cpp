@@ -151,7 +151,7 @@ std::optional<HertzComparison> compare_with_hertz_3d(const Model& model, const O
     const double difference = point.pressure - hertz_pressure(hertz, point.s);
     error += tributary[point.node] * difference * difference;
   }
-  const double copies = scene.body.symmetry ? 4.0 : 1.0;
+  const double copies = mirror_copies(model);
   const double a = hertz.contact_radius;
   const double reference = kPi * a * a * hertz.max_pressure * hertz.max_pressure / 2 / copies;
   hertz.error_l2 = std::sqrt(error / reference);

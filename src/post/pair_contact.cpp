@@ -57,7 +57,6 @@ std::optional<HertzComparison> compare_pair_with_hertz(const Model& model, const
   if (!(P > 0)) return std::nullopt;
   hertz.force = P;
   const auto& profile = contact.profile;
-  const bool symmetry = model.scene.body.symmetry;
   if (dim == 2) {
     hertz.half_width = std::sqrt(4 * P * R / (kPi * E));
     hertz.max_pressure = 2 * P / (kPi * hertz.half_width);
@@ -88,7 +87,7 @@ std::optional<HertzComparison> compare_pair_with_hertz(const Model& model, const
       error += tributary[point.node] * d * d;
     }
     const double a0 = hertz.contact_radius;
-    const double reference = kPi * a0 * a0 * hertz.max_pressure * hertz.max_pressure / 2 / (symmetry ? 4.0 : 1.0);
+    const double reference = kPi * a0 * a0 * hertz.max_pressure * hertz.max_pressure / 2 / mirror_copies(model);
     hertz.error_l2 = std::sqrt(error / reference);
   }
   hertz.error_max_pressure = (contact.max_pressure - hertz.max_pressure) / hertz.max_pressure;
@@ -119,7 +118,7 @@ std::vector<PairContact> summarize_pairs(const Model& model, const QuadraticProg
   std::vector<PairContact> out;
   const int dim = model.dim;
   const bool symmetry = model.scene.body.symmetry;
-  const double copies = symmetry ? (dim == 2 ? 2.0 : 4.0) : 1.0;
+  const double copies = mirror_copies(model);
   const Eigen::Vector3d axis = dim == 2 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitZ();
   const double thickness = dim == 2 ? model.scene.body.thickness : 1.0;
   const Eigen::VectorXd displacement = full_displacement(model, u);
@@ -152,10 +151,9 @@ std::vector<PairContact> summarize_pairs(const Model& model, const QuadraticProg
       }
       contact.total_force += copies * lambda[i];
     }
-    if (symmetry) {  // the mirrored parts add along the shared axis and cancel across it
-      on_node = copies * on_node.dot(axis) * axis;
-      on_face = copies * on_face.dot(axis) * axis;
-    }
+    // The mirrored parts add along the cuts and cancel across them.
+    on_node = whole_body_sum(model, on_node);
+    on_face = whole_body_sum(model, on_face);
     contact.force_on_node_body = on_node;
     contact.force_on_face_body = on_face;
     const double scale = std::max(on_node.norm(), on_face.norm());
@@ -175,12 +173,13 @@ std::vector<PairContact> summarize_pairs(const Model& model, const QuadraticProg
       first += lambda[i] * model.mesh.nodes[model.candidates[i].node];
     }
     Eigen::Vector3d centre = sum > 0 ? Eigen::Vector3d(first / sum) : Eigen::Vector3d::Zero();
-    if (symmetry) centre = centre.dot(axis) * axis;
+    centre = mirror_mean(model, centre);
     double second = 0;
     for (int i : rows) {
       const Candidate& c = model.candidates[i];
       ContactProfilePoint point;
       point.node = c.node;
+      point.row = i;
       point.force = lambda[i];
       point.pressure = pressure[i];
       point.s = coordinate(model.mesh.nodes[c.node], dim, tangent, centre, normal);

@@ -7,13 +7,16 @@
 namespace contactqp {
 
 std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
-                                const Eigen::VectorXd& lambda) {
-  (void)qp;  // one row per candidate, in candidate order
-  return reactions(model, u, lambda, [&model](const std::string& name) { return boundary_nodes(model.mesh, name); });
+                                const Eigen::VectorXd& lambda, const Eigen::VectorXd& lambda_t) {
+  // λ: one row per candidate, in candidate order; λ_T through the QP's friction block.
+  const Eigen::VectorXd friction = lambda_t.size() > 0 ? friction_nodal_forces(model, qp, lambda_t) : Eigen::VectorXd();
+  return reactions(
+      model, u, lambda, [&model](const std::string& name) { return boundary_nodes(model.mesh, name); }, friction);
 }
 
 std::vector<Reaction> reactions(const Model& model, const Eigen::VectorXd& u, const Eigen::VectorXd& lambda,
-                                const std::function<std::vector<int>(const std::string&)>& nodes_of) {
+                                const std::function<std::vector<int>(const std::string&)>& nodes_of,
+                                const Eigen::VectorXd& friction_forces) {
   const Mesh& mesh = model.mesh;
   // Only the nodes of prescribed boundaries need their residual, so only the elements at them
   // are visited, in element order: each node's sum is the one a loop over all elements makes.
@@ -57,18 +60,15 @@ std::vector<Reaction> reactions(const Model& model, const Eigen::VectorXd& u, co
     const Eigen::Vector3d n = detail::project(model.scene.obstacles[c.obstacle], mesh.nodes[c.node]).normal;
     residual.segment(dim * c.node, dim) -= lambda[i] * n.head(dim);
   }
+  if (friction_forces.size() > 0) residual -= friction_forces;
   std::vector<Reaction> out;
   for (const LoadSpec& load : model.scene.loads) {
     const DisplacementLoad* d = load.as<DisplacementLoad>();
     if (!d) continue;
     Reaction reaction{load.path, d->boundary, Eigen::Vector3d::Zero()};
     for (int node : nodes_of(d->boundary)) reaction.force.head(dim) += residual.segment(dim * node, dim);
-    // With symmetry the mirrored parts push the same along the axis the cuts share and
-    // cancel across it (2D: the scene's y, two halves; 3D: its z, four quarters).
-    if (model.scene.body.symmetry) {
-      const Eigen::Vector3d axis = model.rotation.col(dim == 2 ? 1 : 2);
-      reaction.force = (dim == 2 ? 2.0 : 4.0) * reaction.force.dot(axis) * axis;
-    }
+    // With symmetry the mirrored parts push the same along the cuts and cancel across them.
+    reaction.force = whole_body_sum(model, reaction.force);
     out.push_back(reaction);
   }
   return out;

@@ -103,6 +103,11 @@ bool supports(const BackendRegistration& registration, ProblemKind kind) {
          registration.problem_kinds.end();
 }
 
+bool solves(const BackendRegistration& registration, const QuadraticProgram& qp) {
+  return supports(registration, problem_kind(qp)) &&
+         (qp.friction.empty() || qp.friction.n_directions <= registration.max_friction_directions);
+}
+
 }  // namespace
 
 Backend register_backend(BackendRegistration registration) { return registry().add(std::move(registration)); }
@@ -148,6 +153,15 @@ std::vector<Backend> available_backends(ProblemKind kind) {
 bool backend_supports(Backend backend, ProblemKind kind) {
   const auto registration = registry().get(backend.name());
   return registration && supports(*registration, kind);
+}
+
+bool backend_solves(Backend backend, const QuadraticProgram& qp) {
+  const auto registration = registry().get(backend.name());
+  return registration && solves(*registration, qp);
+}
+
+std::vector<Backend> available_backends(const QuadraticProgram& qp) {
+  return backends_where([&](const BackendRegistration& r) { return r.available && solves(r, qp); });
 }
 
 }  // namespace contactqp

@@ -3,18 +3,36 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "contactqp/cholesky.hpp"
+#include "contactqp/errors.hpp"
 #include "norms.hpp"
+#include "qp/friction_sets.hpp"
 
 namespace contactqp {
+namespace {
+
+// λ_T as the certificate reads it: zeros when the caller passed none.
+VectorXd tangential_multipliers(const QuadraticProgram& qp, const VectorXd& lambda_t) {
+  const long rows = qp.friction.T.rows();
+  if (lambda_t.size() == 0) return VectorXd::Zero(rows);
+  if (lambda_t.size() != rows)
+    throw InputError("lambda_t",
+                     "has " + std::to_string(lambda_t.size()) + " entries, T has " + std::to_string(rows) + " rows");
+  return lambda_t;
+}
+
+}  // namespace
 
 double force_scale(const VectorXd& f, const VectorXd& Ku, const VectorXd& Btl) {
   return std::max({inf_norm(f), inf_norm(Ku), inf_norm(Btl)});
 }
 
-double force_scale(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda) {
-  return force_scale(qp.f, K_times(qp, u), qp.B.transpose() * lambda);
+double force_scale(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda, const VectorXd& lambda_t) {
+  const double F = force_scale(qp.f, K_times(qp, u), qp.B.transpose() * lambda);
+  if (qp.friction.empty() || lambda_t.size() == 0) return F;
+  return std::max(F, inf_norm(VectorXd(qp.friction.T.transpose() * lambda_t)));
 }
 
 double length_scale(const QuadraticProgram& qp, const VectorXd& u) {
@@ -23,7 +41,7 @@ double length_scale(const QuadraticProgram& qp, const VectorXd& u) {
 }
 
 double Certificate::kkt_max() const {
-  return std::max({stationarity, primal_feasibility, dual_feasibility, complementarity});
+  return std::max({stationarity, primal_feasibility, dual_feasibility, complementarity, tangential});
 }
 
 CertificateTerms certificate_terms(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda) {
@@ -80,6 +98,7 @@ Certificate certificate_from(const CertificateTerms& t) {
 
 Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda,
                     const LinearSolver* K_factor) {
+  if (!qp.friction.empty()) return certify(qp, u, lambda, VectorXd(), K_factor);  // λ_T read as 0
   const VectorXd Ku = K_times(qp, u);
   CertificateTerms terms = certificate_terms(qp, Ku, u, lambda);
   std::unique_ptr<CholeskyFactor> own_factor;
@@ -92,6 +111,58 @@ Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorX
     terms.r_K_inverse_r = r.dot(K_factor->solve(r));
   }
   return certificate_from(terms);
+}
+
+// With friction the formulas gain T's rows (certificate.hpp); without, the certificate above.
+Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda, const VectorXd& lambda_t_in,
+                    const LinearSolver* K_factor) {
+  if (qp.friction.empty()) return certify(qp, u, lambda, K_factor);
+  Certificate c;
+  const VectorXd lambda_t = tangential_multipliers(qp, lambda_t_in);
+  const VectorXd Ku = K_times(qp, u);
+  const VectorXd Btl = qp.B.transpose() * lambda;
+  VectorXd r = Ku - qp.f + Btl + qp.friction.T.transpose() * lambda_t;  // stationarity residual
+  const VectorXd slack = qp.B * u - qp.g;                               // ≤ 0 when feasible
+
+  const double F = force_scale(qp, u, lambda, lambda_t);
+  const double L = length_scale(qp, u);
+  const double lambda_max = inf_norm(lambda);
+
+  c.stationarity = relative(inf_norm(r), F);
+  c.primal_feasibility = relative(slack.size() ? std::max(0.0, slack.maxCoeff()) : 0.0, L);
+  c.dual_feasibility = relative(lambda.size() ? std::max(0.0, -lambda.minCoeff()) : 0.0, std::max(lambda_max, F));
+  double complementarity = 0;
+  for (int i = 0; i < slack.size(); ++i) complementarity = std::max(complementarity, std::abs(lambda[i] * slack[i]));
+  c.complementarity = relative(complementarity, std::max(lambda_max, F) * L);
+
+  const double uKu = u.dot(Ku);
+  c.objective = 0.5 * uKu - qp.f.dot(u);
+  double lagrangian = c.objective + lambda.dot(slack);
+  const VectorXd slip = detail::slip_of(qp.friction, u);
+  const VectorXd radii = detail::disc_radii(qp.friction, lambda);
+  const double rho = F > 0 && L > 0 ? F / L : 1.0;
+  c.tangential = relative(detail::natural_map_residual(qp.friction, lambda_t, radii, slip, rho), F);
+  const double friction_energy = detail::dissipation(qp.friction, radii, slip);  // Σ r_i ‖slip_i‖
+  lagrangian += lambda_t.dot(slip);
+  c.objective += friction_energy;
+
+  // θ(λ) = L(u, λ) − ½ rᵀK⁻¹r: exact, and accurate near the optimum where r → 0.
+  std::unique_ptr<CholeskyFactor> own_factor;
+  if (!K_factor) {
+    own_factor = std::make_unique<CholeskyFactor>(qp.K);
+    K_factor = own_factor.get();
+  }
+  c.dual_available = false;
+  if (K_factor->ok()) {
+    c.dual_objective = lagrangian - 0.5 * r.dot(K_factor->solve(r));
+    c.duality_gap = c.objective - c.dual_objective;
+    const double energy = std::max({std::abs(c.objective), std::abs(c.dual_objective), 0.5 * std::abs(uKu),
+                                    std::abs(qp.f.dot(u)), friction_energy});
+    c.relative_gap = relative(c.duality_gap, energy);
+    c.dual_available = std::isfinite(c.dual_objective);
+  }
+  if (!c.dual_available) c.dual_objective = c.duality_gap = c.relative_gap = 0;
+  return c;
 }
 
 }  // namespace contactqp

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "contactqp/errors.hpp"
+#include "qp/friction_sets.hpp"
 
 namespace contactqp {
 namespace {
@@ -96,6 +97,7 @@ void validate(const QuadraticProgram& qp) {
   if (!all_finite(qp.B)) throw InputError("qp.B", "has an entry that is not finite");
   if (!qp.f.allFinite()) throw InputError("qp.f", "has an entry that is not finite");
   if (!qp.g.allFinite()) throw InputError("qp.g", "has an entry that is not finite");
+  detail::validate_friction(qp);
 }
 
 }  // namespace contactqp

@@ -17,24 +17,33 @@ json run_json(const BackendRun& run, double linear_solve_seconds, int dim) {
   const Certificate& c = run.certificate;
   json timings = json::object();
   for (const auto& [phase, seconds] : run.result.timings.phases()) timings[phase] = number(seconds);
-  return {{"backend", to_string(run.backend)},
-          {"status", to_string(run.result.status)},
-          {"message", run.result.message},
-          {"iterations", run.result.iterations},
-          {"seconds", number(run.result.timings.get("total"))},
-          {"seconds_in_linear_solves", number(run.result.timings.get("total") / linear_solve_seconds)},
-          {"objective", number(c.objective)},
-          {"dual_objective", c.dual_available ? number(c.dual_objective) : json(nullptr)},
-          {"duality_gap", c.dual_available ? number(c.duality_gap) : json(nullptr)},
-          {"relative_duality_gap", c.dual_available ? number(c.relative_gap) : json(nullptr)},
-          {"kkt_max", number(c.kkt_max())},
-          {"rel_diff_u", number(run.rel_diff_u)},
-          {"rel_diff_lambda", number(run.rel_diff_lambda)},
-          {dim == 2 ? "half_width" : "contact_radius",
-           number(dim == 2 ? run.contact.half_width : run.contact.contact_radius)},
-          {"max_pressure", number(run.contact.max_pressure)},
-          {"total_force", number(run.contact.total_force)},
-          {"timings", timings}};
+  json out = {{"backend", to_string(run.backend)},
+              {"status", to_string(run.result.status)},
+              {"message", run.result.message},
+              {"iterations", run.result.iterations},
+              {"seconds", number(run.result.timings.get("total"))},
+              {"seconds_in_linear_solves", number(run.result.timings.get("total") / linear_solve_seconds)},
+              {"objective", number(c.objective)},
+              {"dual_objective", c.dual_available ? number(c.dual_objective) : json(nullptr)},
+              {"duality_gap", c.dual_available ? number(c.duality_gap) : json(nullptr)},
+              {"relative_duality_gap", c.dual_available ? number(c.relative_gap) : json(nullptr)},
+              {"kkt_max", number(c.kkt_max())},
+              {"rel_diff_u", number(run.rel_diff_u)},
+              {"rel_diff_lambda", number(run.rel_diff_lambda)},
+              {dim == 2 ? "half_width" : "contact_radius",
+               number(dim == 2 ? run.contact.half_width : run.contact.contact_radius)},
+              {"max_pressure", number(run.contact.max_pressure)},
+              {"total_force", number(run.contact.total_force)},
+              {"timings", timings}};
+  // With friction: the tangential residual, and Coulomb's fixed point (its Tresca solves, last change).
+  if (run.result.lambda_t.size() > 0) {
+    out["tangential_residual"] = number(c.tangential);
+    for (const char* key : {"fixed_point_steps", "fixed_point_change"}) {
+      const auto it = run.result.diagnostics.find(key);
+      if (it != run.result.diagnostics.end()) out[key] = number(it->second);
+    }
+  }
+  return out;
 }
 
 }  // namespace

@@ -19,6 +19,14 @@ constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
 
 bool converged(const BackendRun& run) { return run.result.status == Status::Converged; }
 
+// The multipliers a comparison measures: λ, and with friction (λ_N, λ_T) together.
+VectorXd multipliers(const BackendRun& run) {
+  if (run.result.lambda_t.size() == 0) return run.result.lambda;
+  VectorXd joined(run.result.lambda.size() + run.result.lambda_t.size());
+  joined << run.result.lambda, run.result.lambda_t;
+  return joined;
+}
+
 // The converged run with the smallest certified |relative gap|; the run with a certificate
 // otherwise. -1 when no run has a dual objective to compare.
 int choose_reference(const std::vector<BackendRun>& runs) {
@@ -40,27 +48,30 @@ Agreement agreement_for(double tol) { return {1e4 * tol, 1e5 * tol, 1e2 * tol}; 
 
 CompareReport compare_scene(const Scene& scene, const CompareOptions& options) {
   Stopwatch total;
-  const std::vector<Backend> backends = options.backends.empty() ? available_backends() : options.backends;
-  std::vector<SolveOptions> solve_options;
-  for (Backend backend : backends) {
-    solve_options.push_back(scene.solver);
-    solve_options.back().backend = backend;
-    validate_options(solve_options.back());
+  for (Backend backend : options.backends) {
+    SolveOptions checked = scene.solver;
+    checked.backend = backend;
+    validate_options(checked);
   }
 
   CompareReport report;
   auto model = std::make_shared<Model>(build_model(scene, options.build));
   auto qp = std::make_shared<QuadraticProgram>(assemble_qp(*model));
-  if (options.backends.empty()) {
-    // Every available backend that solves this kind of problem (backend.hpp); a backend named
-    // explicitly is refused by solve() instead, naming the ones that do.
-    const ProblemKind kind = problem_kind(*qp);
-    solve_options.erase(std::remove_if(solve_options.begin(), solve_options.end(),
-                                       [&](const SolveOptions& o) { return !backend_supports(o.backend, kind); }),
-                        solve_options.end());
+  // Every available backend that solves this problem (its kind and, with friction, its dimension;
+  // backend.hpp), or the ones listed, each of which must: checked before any solve.
+  const std::vector<Backend> backends = options.backends.empty() ? available_backends(*qp) : options.backends;
+  std::vector<SolveOptions> solve_options;
+  for (Backend backend : backends) {
+    if (!backend_solves(backend, *qp)) {
+      std::string valid;
+      for (Backend other : available_backends(*qp)) valid += (valid.empty() ? "" : ", ") + to_string(other);
+      throw InputError("--backends", "= " + to_string(backend) + ": does not solve this scene's " +
+                                         (qp->friction.n_directions == 2 ? "3D " : "") + to_string(problem_kind(*qp)) +
+                                         " friction problem; backends that do: " + valid);
+    }
+    solve_options.push_back(scene.solver);
+    solve_options.back().backend = backend;
   }
-  report.model = model;
-  report.qp = qp;
   report.tol = scene.solver.tol;
   report.warnings = model->warnings;
 
@@ -76,17 +87,32 @@ CompareReport compare_scene(const Scene& scene, const CompareOptions& options) {
     report.linear_solve_seconds = std::min(report.linear_solve_seconds, clock.seconds());
   }
 
-  // Each backend from scratch (its own factorisation included), so that the times compare.
+  // Each backend from scratch (its own factorisation included), so that the times compare. A
+  // scene with load steps runs its whole path per backend (with friction the answer depends on
+  // it), on its own copy of the model and the QP; the last step's answers are compared, each
+  // certified on the QP of its own last step (the offset is that backend's last-but-one step).
+  std::shared_ptr<const Model> last_model = model;
+  std::shared_ptr<const QuadraticProgram> last_qp = qp;
   for (const SolveOptions& run_options : solve_options) {
     BackendRun run;
     run.backend = run_options.backend;
-    run.result = solve(*qp, run_options);
+    if (scene.steps.empty()) {
+      run.result = solve(*qp, run_options);
+    } else {
+      auto step_model = std::make_shared<Model>(*model);
+      auto step_qp = std::make_shared<QuadraticProgram>(*qp);
+      run.result = solve_load_steps(*step_model, *step_qp, scene, run_options);
+      last_model = step_model;
+      last_qp = step_qp;
+    }
     run.result.K_factor.reset();  // a factor per backend is memory the next one may need
-    run.certificate = certify(*qp, run.result.u, run.result.lambda, &K_factor);
-    run.contact = summarize_contact(*model, *qp, run.result.u, run.result.lambda);
-    if (!model->bodies.empty() && model->scene.obstacles.empty()) {
+    const Model& run_model = *last_model;
+    const QuadraticProgram& run_qp = *last_qp;
+    run.certificate = certify(run_qp, run.result.u, run.result.lambda, run.result.lambda_t, &K_factor);
+    run.contact = summarize_contact(run_model, run_qp, run.result.u, run.result.lambda);
+    if (!run_model.bodies.empty() && run_model.scene.obstacles.empty()) {
       // Bodies without obstacles: the table's zone is the first pair's.
-      const std::vector<PairContact> pairs = summarize_pairs(*model, *qp, run.result.u, run.result.lambda);
+      const std::vector<PairContact> pairs = summarize_pairs(run_model, run_qp, run.result.u, run.result.lambda);
       if (!pairs.empty()) {
         run.contact.total_force = pairs[0].total_force;
         run.contact.half_width = pairs[0].half_width;
@@ -98,12 +124,14 @@ CompareReport compare_scene(const Scene& scene, const CompareOptions& options) {
     report.runs.push_back(std::move(run));
   }
 
+  report.model = last_model;  // with load steps, the last step's (loads, offset) of the last backend
+  report.qp = last_qp;
   std::vector<BackendRun>& runs = report.runs;
   report.reference = choose_reference(runs);
   if (report.reference >= 0)
     for (BackendRun& run : runs) {
       run.rel_diff_u = relative_difference(run.result.u, runs[report.reference].result.u);
-      run.rel_diff_lambda = relative_difference(run.result.lambda, runs[report.reference].result.lambda);
+      run.rel_diff_lambda = relative_difference(multipliers(run), multipliers(runs[report.reference]));
     }
 
   // Agreement only when every run converged, every certified gap is small and every pair agrees.
@@ -115,7 +143,7 @@ CompareReport compare_scene(const Scene& scene, const CompareOptions& options) {
     for (size_t j = 0; j < i; ++j) {
       report.max_diff_u = std::max(report.max_diff_u, symmetric_difference(runs[i].result.u, runs[j].result.u));
       report.max_diff_lambda =
-          std::max(report.max_diff_lambda, symmetric_difference(runs[i].result.lambda, runs[j].result.lambda));
+          std::max(report.max_diff_lambda, symmetric_difference(multipliers(runs[i]), multipliers(runs[j])));
     }
   }
   report.agree = report.all_converged && report.max_diff_u <= report.bound.u &&

@@ -29,9 +29,14 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   // needs K whole.
   const std::shared_ptr<detail::ProblemInParts> in_parts =
       options.no_contact ? nullptr : detail::assemble_in_parts(*model, scene.solver);
+  if (in_parts && !scene.steps.empty())
+    throw InputError("steps", "are not solved on a problem held in parts (the " + to_string(scene.solver.backend) +
+                                  " backend on several processes): run the scene on one");
+  // The whole QP, which load steps change step by step (loads, gaps, friction offset).
+  const std::shared_ptr<QuadraticProgram> whole =
+      in_parts ? nullptr : std::make_shared<QuadraticProgram>(assemble_qp(*model));
   const std::shared_ptr<const QuadraticProgram> qp =
-      in_parts ? std::shared_ptr<const QuadraticProgram>(in_parts, &in_parts->part())
-               : std::make_shared<QuadraticProgram>(assemble_qp(*model));
+      in_parts ? std::shared_ptr<const QuadraticProgram>(in_parts, &in_parts->part()) : whole;
 
   RunReport report;
   report.model = model;
@@ -41,27 +46,35 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   report.options.observer = nullptr;  // a callback is not data: the report must not keep the caller's closure alive
   report.no_contact = options.no_contact;
   phase("solve");
-  report.result = options.no_contact ? solve_without_contact(*qp, scene.solver)
-                  : in_parts         ? in_parts->solve(scene.solver)
-                                     : solve(*qp, scene.solver);
+  if (options.no_contact)
+    report.result = solve_without_contact(*qp, scene.solver);
+  else if (in_parts)
+    report.result = in_parts->solve(scene.solver);
+  else if (scene.steps.empty())
+    report.result = solve(*qp, scene.solver);
+  else
+    report.result = solve_load_steps(*model, *whole, scene, report.options, &report.steps);
 
   phase("certify");
   Stopwatch clock;
   report.certificate = in_parts ? in_parts->certify(report.result.u, report.result.lambda, report.result.K_factor.get())
-                                : certify(*qp, report.result.u, report.result.lambda, report.result.K_factor.get());
+                                : certify(*qp, report.result.u, report.result.lambda, report.result.lambda_t,
+                                          report.result.K_factor.get());
   report.timings.merge(model->timings);
   report.timings.merge(report.result.timings);
   report.timings.add("certify", clock.seconds());
   phase("postprocess");
   clock.restart();
-  report.contact = summarize_contact(*model, *qp, report.result.u, report.result.lambda);
+  PostProcessed state = postprocess(*model, *qp, report.result);
+  report.contact = std::move(state.contact);
   // With several bodies the obstacles' Hertz would need each body's material: the pairs have theirs.
   if (!report.no_contact && model->bodies.empty()) {
     report.hertz = compare_with_hertz(*model, report.contact);
     report.boussinesq = compare_with_boussinesq(*model, report.contact);
   }
-  report.reactions = reactions(*model, *qp, report.result.u, report.result.lambda);
-  report.pairs = summarize_pairs(*model, *qp, report.result.u, report.result.lambda);
+  report.reactions = std::move(state.reactions);
+  report.pairs = std::move(state.pairs);
+  report.friction = std::move(state.friction);
   // The largest contact pressure anywhere, as the VTU's contact_pressure field holds it: the
   // pairs' nodal pressures on both sides too.
   for (const PairContact& pair : report.pairs)

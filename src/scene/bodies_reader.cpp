@@ -54,7 +54,7 @@ SceneBody read_scene_body(const json& entry, const std::string& path, const std:
     throw InputError(path + ".formulation", "= \"mixed\": only for \"model\": \"plane_strain\"");
   if (body.body.symmetry)
     for (int c = 0; c < dim - 1; ++c)
-      if (body.placement.offset[c] != 0.0)
+      if (symmetric_about(body.body, c, dim) && body.placement.offset[c] != 0.0)
         throw InputError(own.path_of("offset"),
                          "= " + format_point(body.placement.offset, dim) + ": a body with symmetry keeps its cut on " +
                              (c == 0 ? "x = 0" : "y = 0") + " (offset only along " + (dim == 2 ? "y" : "z") + ")");
@@ -115,6 +115,7 @@ void read_contact_entry(JsonObject entry, Scene& scene) {
                                                   scene.bodies[pair.body[0]].name +
                                                   "\"; a pair couples two different bodies");
     pair.max_gap = read_max_gap(entry);
+    if (entry.has("friction")) pair.friction = read_friction(entry.object("friction"));
     entry.finish();
     scene.pairs.push_back(pair);
     return;
@@ -125,6 +126,7 @@ void read_contact_entry(JsonObject entry, Scene& scene) {
   spec.body = body;
   spec.boundary = boundary;
   spec.max_gap = read_max_gap(entry);
+  if (entry.has("friction")) spec.friction = read_friction(entry.object("friction"));
   entry.finish({"pair"});
   scene.obstacle_contacts.push_back(spec);
 }
@@ -146,11 +148,10 @@ void read_bodies(JsonObject& root, Scene& scene, const std::string& source) {
   const SceneBody& first = scene.bodies.front();
   for (const SceneBody& body : scene.bodies) {
     // One symmetry plane and one thickness for the whole model: the halves must match.
-    if (body.body.symmetry != first.body.symmetry)
-      throw InputError(body.path + ".symmetry", "= " + std::string(body.body.symmetry ? "true" : "false") +
+    if (symmetry_boundaries(body.body, 3) != symmetry_boundaries(first.body, 3))
+      throw InputError(body.path + ".symmetry", "= " + symmetry_name(body.body) +
                                                     ": every body of a scene is modelled with the same symmetry (" +
-                                                    first.path + " has " + (first.body.symmetry ? "true" : "false") +
-                                                    ")");
+                                                    first.path + " has " + symmetry_name(first.body) + ")");
     if (body.body.thickness != first.body.thickness)
       throw InputError(body.path + ".thickness", "= " + format_value(body.body.thickness) +
                                                      ": every body of a scene has the same thickness (" +

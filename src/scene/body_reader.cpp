@@ -103,6 +103,29 @@ void read_mesh_file(JsonObject& body, BodySpec& spec, const std::string& source)
   }
 }
 
+// "symmetry": true (every plane of the shape), false, or in 3D one plane: "x" (x = 0, the half
+// x ≥ 0) or "y" (y = 0, the half y ≥ 0) — the one plane that stays a mirror under a load along
+// the other axis. check_symmetry() then refuses what the scene breaks.
+void read_symmetry(JsonObject& body, BodySpec& spec, int dim) {
+  if (!body.has("symmetry")) return;
+  const nlohmann::json& value = body.value("symmetry");
+  if (value.is_boolean()) {
+    spec.symmetry = value.get<bool>();
+    return;
+  }
+  const std::string path = body.path_of("symmetry");
+  if (!value.is_string())
+    throw InputError(path, "= " + describe(value) +
+                               (dim == 3 ? ": must be true, false, \"x\" or \"y\"" : ": must be true or false"));
+  const std::string plane = value.get<std::string>();
+  if (dim == 2)
+    throw InputError(path, "= \"" + plane + "\": must be true or false (a 2D body has one symmetry plane, x = 0)");
+  if (plane != "x" && plane != "y") unknown_choice(path, plane, "symmetry plane", {"x", "y"});
+  spec.symmetry = true;
+  spec.symmetry_x = plane == "x";
+  spec.symmetry_y = plane == "y";
+}
+
 }  // namespace
 
 BodySpec read_body(JsonObject body, const std::string& source, int dim) {
@@ -130,7 +153,7 @@ BodySpec read_body(JsonObject body, const std::string& source, int dim) {
     spec.height = body.number("height");
     require(spec.height > 0, body.path_of("height"), spec.height, "must be positive");
   }
-  spec.symmetry = body.optional_boolean("symmetry").value_or(false);
+  read_symmetry(body, spec, dim);
   if (auto formulation = body.optional_string("formulation")) {
     if (*formulation == "mixed")
       spec.formulation = Formulation::Mixed;

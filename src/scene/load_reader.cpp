@@ -72,6 +72,10 @@ PointLoad read_point(JsonObject& load, const BodySpec& body, int dim) {
 LoadSpec read_load(JsonObject load, const BodySpec& body, int dim) {
   LoadSpec spec;
   spec.path = load.path();
+  if (auto name = load.optional_string("name")) {
+    spec.name = *name;
+    if (spec.name.empty()) throw InputError(load.path_of("name"), "= \"\": must be a non-empty name");
+  }
   const std::string type = load.string("type");
   if (std::find(kLoadTypes.begin(), kLoadTypes.end(), type) == kLoadTypes.end())
     unknown_choice(load.path_of("type"), type, "load type", kLoadTypes);

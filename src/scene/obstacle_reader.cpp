@@ -118,6 +118,7 @@ ObstacleSpec read_obstacle(JsonObject obstacle, int dim) {
     punch.radius = read_radius(obstacle);
     spec.shape = punch;
   }
+  if (obstacle.has("friction")) spec.friction = read_friction(obstacle.object("friction"));
   obstacle.finish();
   return spec;
 }

@@ -47,6 +47,14 @@ LoadSpec read_load(JsonObject load, const BodySpec& body, int dim);
 // One entry of `obstacle`.
 ObstacleSpec read_obstacle(JsonObject obstacle, int dim);
 
+// friction_reader.cpp: a `friction` section, {"coefficient": μ} or {"threshold": s}.
+FrictionSpec read_friction(JsonObject friction);
+
+// friction_reader.cpp: `steps`, after every load is read (their names are known); and the
+// scene-wide rules of friction: one law, and no row given friction twice.
+void read_steps(const nlohmann::json& steps, Scene& scene);
+void check_friction(const Scene& scene);
+
 // `transform`.
 TransformSpec read_transform(JsonObject transform, int dim);
 

@@ -112,6 +112,7 @@ ContactSpec read_contact(JsonObject contact, const BodySpec& body) {
   }
   spec.max_gap = contact.optional_number("max_gap");
   if (spec.max_gap) require(*spec.max_gap >= 0, contact.path_of("max_gap"), *spec.max_gap, "must be ≥ 0");
+  if (contact.has("friction")) spec.friction = detail::read_friction(contact.object("friction"));
   contact.finish();
   return spec;
 }
@@ -181,9 +182,25 @@ std::string to_string(ElasticModel model) {
 
 int dimension(ElasticModel model) { return model == ElasticModel::Solid ? 3 : 2; }
 
-std::vector<std::string> symmetry_boundaries(int dim) {
-  if (dim == 2) return {"symmetry"};
-  return {"symmetry_x", "symmetry_y"};
+bool symmetric_about(const BodySpec& body, int component, int dim) {
+  if (!body.symmetry || component > dim - 2) return false;
+  return dim == 2 || (component == 0 ? body.symmetry_x : body.symmetry_y);
+}
+
+std::vector<std::string> symmetry_boundaries(const BodySpec& body, int dim) {
+  if (dim == 2) return body.symmetry ? std::vector<std::string>{"symmetry"} : std::vector<std::string>{};
+  std::vector<std::string> planes;
+  if (symmetric_about(body, 0, dim)) planes.push_back("symmetry_x");
+  if (symmetric_about(body, 1, dim)) planes.push_back("symmetry_y");
+  return planes;
+}
+
+int symmetry_copies(const BodySpec& body, int dim) { return 1 << symmetry_boundaries(body, dim).size(); }
+
+std::string symmetry_name(const BodySpec& body) {
+  if (!body.symmetry) return "false";
+  if (body.symmetry_x && body.symmetry_y) return "true";
+  return body.symmetry_x ? "x" : "y";
 }
 
 int symmetry_component(const std::string& boundary) { return boundary == "symmetry_y" ? 1 : 0; }
@@ -199,11 +216,13 @@ std::vector<std::string> boundary_names(const BodySpec& body) {
   else if (body.shape == "hemisphere")
     names = {"surface", "top"};
   else if (body.shape == "box")
-    names = {"bottom", "top", body.symmetry ? "" : "left", "right", body.symmetry ? "" : "front", "back"};
+    names = {
+        "bottom", "top", symmetric_about(body, 0, 3) ? "" : "left", "right", symmetric_about(body, 1, 3) ? "" : "front",
+        "back"};
   names.erase(std::remove(names.begin(), names.end(), ""), names.end());
   if (body.symmetry && body.shape != "mesh") {
     const bool solid = body.shape == "hemisphere" || body.shape == "box";
-    for (const std::string& plane : symmetry_boundaries(solid ? 3 : 2)) names.push_back(plane);
+    for (const std::string& plane : symmetry_boundaries(body, solid ? 3 : 2)) names.push_back(plane);
   }
   return names;
 }
@@ -261,6 +280,8 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
 
   if (root.has("bodies")) {  // several bodies (bodies_reader.cpp)
     detail::read_bodies(root, scene, source);
+    if (root.has("steps")) detail::read_steps(root.value("steps"), scene);
+    detail::check_friction(scene);
     root.finish();
     return scene;
   }
@@ -283,6 +304,8 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   if (scene.contact.boundary.empty()) scene.contact.boundary = default_contact_boundary(scene.body, dim);
   if (root.has("transform")) scene.transform = detail::read_transform(root.object("transform"), dim);
   if (root.has("solver")) read_solver(root.object("solver"), scene.solver);
+  if (root.has("steps")) detail::read_steps(root.value("steps"), scene);
+  detail::check_friction(scene);
   root.finish();
   detail::check_symmetry(scene);
   return scene;

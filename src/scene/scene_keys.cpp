@@ -14,6 +14,7 @@ using nlohmann::json;
 
 struct Format {
   Section material, generated_mesh, geo_mesh, body, load, obstacle, contact, transform, solver, bodies_entry, root;
+  Section friction, step;
   Format();
 };
 
@@ -36,7 +37,13 @@ Format::Format() {
   };
   body.variant_dims = {{"half_disc", 2}, {"rectangle", 2}, {"hemisphere", 3}, {"box", 3}};
 
-  load.keys = {must("type")};
+  // Friction (docs/friction.md): Coulomb's coefficient or Tresca's threshold, on the contact
+  // boundary, an obstacle or a contact entry (a pair). "name": what the load steps call a load.
+  friction.keys = {{"coefficient"}, {"threshold"}};
+  // A load step: "factors" maps load names (free-form, as solver.options) to numbers.
+  step.keys = {must("factors")};
+
+  load.keys = {must("type"), {"name"}};
   load.selector = "type";
   load.variants = {
       {"displacement", {must("boundary"), must("value")}}, {"traction", {must("boundary"), must("value")}},
@@ -44,7 +51,7 @@ Format::Format() {
       {"point", {must("value"), {"at"}, {"point"}}},  // "at" or "point"
   };
 
-  obstacle.keys = {must("type")};
+  obstacle.keys = {must("type"), {"friction", &friction}};
   obstacle.selector = "type";
   obstacle.variants = {
       {"plane", {must("point"), must("normal")}},
@@ -57,7 +64,7 @@ Format::Format() {
   obstacle.variant_dims = {{"circle", 2}, {"profile", 2}, {"sphere", 3}, {"cylinder", 3}, {"punch", 3}};
 
   // One body: the boundary that may touch. Several bodies: a list of pairs and boundaries.
-  contact.keys = {{"boundary"}, {"max_gap"}, {"pair"}};
+  contact.keys = {{"boundary"}, {"max_gap"}, {"pair"}, {"friction", &friction}};
   transform.keys = {must("rotate_degrees"), must("axis", nullptr, 3)};
   // "options" holds the backend's own keys, which the backend checks (--backend-option).
   // "petsc_options": PETSc's options database entries, as --petsc-options (the PETSc room reads it).
@@ -74,7 +81,8 @@ Format::Format() {
                {"material", &material}, {"body", &body},
                {"load", &load},         {"obstacle", &obstacle},
                {"contact", &contact},   {"transform", &transform},
-               {"solver", &solver},     {"bodies", &bodies_entry}};
+               {"solver", &solver},     {"bodies", &bodies_entry},
+               {"steps", &step}};
 }
 
 const Format& format() {

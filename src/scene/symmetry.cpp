@@ -1,6 +1,6 @@
-// body.symmetry models only x ≥ 0 in 2D, the quarter x ≥ 0, y ≥ 0 in 3D, with the normal
-// displacement held on each cut. That is right only when the whole scene is mirror-symmetric
-// about x = 0 (and y = 0) in its own frame (the transform turns the symmetric scene as a
+// body.symmetry models only x ≥ 0 in 2D, the quarter x ≥ 0, y ≥ 0 in 3D (or the half beside the
+// one plane "symmetry": "x" or "y" names), with the normal displacement held on each cut. That
+// is right only when the whole scene is mirror-symmetric about x = 0 (and y = 0) in its own frame (the transform turns the symmetric scene as a
 // whole, so the check ignores it).
 #include <algorithm>
 #include <cmath>
@@ -12,9 +12,10 @@
 namespace contactqp::detail {
 namespace {
 
-[[noreturn]] void broken(const std::string& what, const std::string& plane) {
-  throw InputError("body.symmetry",
-                   "= true: " + what + ", which is not mirror-symmetric about " + plane + "; set \"symmetry\": false");
+[[noreturn]] void broken(const BodySpec& body, const std::string& what, const std::string& plane) {
+  const std::string name = symmetry_name(body), value = name == "true" ? name : "\"" + name + "\"";
+  throw InputError("body.symmetry", "= " + value + ": " + what + ", which is not mirror-symmetric about " + plane +
+                                        "; set \"symmetry\": false");
 }
 
 // A point on the mirror plane x_c = 0; a direction within it.
@@ -75,25 +76,30 @@ void check_symmetry(const Scene& scene) {
   if (!scene.body.symmetry) return;
   const int dim = scene.dim();
   for (int c = 0; c < dim - 1; ++c) {  // x = 0, and y = 0 in 3D
+    if (!symmetric_about(scene.body, c, dim)) continue;
     const std::string axis = c == 0 ? "x" : "y";
     const std::string plane = axis + " = 0";
     for (const ObstacleSpec& o : scene.obstacles)
-      if (const Mirror m = mirror(o, c, axis); !m.symmetric) broken(o.path + " (" + o.type() + m.rule, plane);
+      if (const Mirror m = mirror(o, c, axis); !m.symmetric)
+        broken(scene.body, o.path + " (" + o.type() + m.rule, plane);
     for (const LoadSpec& load : scene.loads) {
       if (const auto* d = load.as<DisplacementLoad>(); d && d->value[c] && *d->value[c] != 0.0)
-        broken(load.path + " has u" + axis + " = " + format_value(*d->value[c]), plane);
+        broken(scene.body, load.path + " has u" + axis + " = " + format_value(*d->value[c]), plane);
       const Eigen::Vector3d* along = nullptr;  // a traction and g must be parallel to the plane
       if (const auto* t = load.as<TractionLoad>()) along = &t->traction;
       if (const auto* g = load.as<GravityLoad>()) along = &g->g;
       if (along && (*along)[c] != 0.0)
-        broken(load.path + " has an " + axis + " component " + format_value((*along)[c]), plane);
+        broken(scene.body, load.path + " has an " + axis + " component " + format_value((*along)[c]), plane);
       const auto* p = load.as<PointLoad>();
       if (p && p->at && (*p->at)[c] < 0)
-        broken(load.path + " acts at " + axis + " = " + format_value((*p->at)[c]) + " < 0, outside the modelled " +
-                   (dim == 2 ? "half" : "quarter") + " (give " + axis + " ≥ 0: the mirror image is implied)",
+        broken(scene.body,
+               load.path + " acts at " + axis + " = " + format_value((*p->at)[c]) + " < 0, outside the modelled " +
+                   (symmetry_copies(scene.body, dim) == 2 ? "half" : "quarter") + " (give " + axis +
+                   " ≥ 0: the mirror image is implied)",
                plane);
       if (p && p->at && (*p->at)[c] == 0 && p->force[c] != 0)
-        broken(load.path + " acts on " + axis + " = 0 with an " + axis + " component " + format_value(p->force[c]),
+        broken(scene.body,
+               load.path + " acts on " + axis + " = 0 with an " + axis + " component " + format_value(p->force[c]),
                plane);
     }
   }
