@@ -110,8 +110,8 @@ Eigen::VectorXd distributed_nodal_forces(const DistributedModel& out, const std:
     const PointLoad* point = model.scene.loads[l].as<PointLoad>();
     if (!point || point_nodes[l] < 0) continue;
     int planes = 0;
-    if (model.scene.body.symmetry)
-      for (const std::string& plane : symmetry_boundaries(dim)) planes += out.on_boundary(point_nodes[l], plane);
+    for (const std::string& plane : symmetry_boundaries(model.scene.body, dim))
+      planes += out.on_boundary(point_nodes[l], plane);
     f.segment(dim * point_nodes[l], dim) += std::pow(0.5, planes) * point->force.head(dim);
   }
   return f;

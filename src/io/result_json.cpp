@@ -200,6 +200,7 @@ json steps_json(const RunReport& report, int dim) {
 
 std::string result_json(const RunReport& report) {
   const Model& model = *report.model;
+  const QuadraticProgram& qp = *report.qp;  // its friction block (a distributed run's has none)
   const Certificate& c = report.certificate;
   json out;
   out["status"] = to_string(report.result.status);
