@@ -92,8 +92,9 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
   validate_options(scene.solver);
   // What the distributed path does not model yet, refused as the one-process path refuses it.
   if (!scene.steps.empty())
-    throw InputError("steps", "are not solved by a distributed run (the petsc backend under mpirun): run the scene "
-                              "on one process");
+    throw InputError("steps",
+                     "are not solved by a distributed run (the petsc backend under mpirun): run the scene "
+                     "on one process");
   if (scene.friction_law() != FrictionLaw::None) {
     const ProblemKind kind = scene.friction_law() == FrictionLaw::Tresca ? ProblemKind::Tresca : ProblemKind::Coulomb;
     std::string others;
