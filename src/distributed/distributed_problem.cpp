@@ -433,13 +433,7 @@ DistributedBoundQp assemble_distributed_bound_qp(const DistributedModel& dm) {
   // f on the local free DOFs: the forces of this rank's faces and elements (in the DOF
   // frames), then the prescribed displacements' share; summed over the ranks by PETSc.
   Eigen::VectorXd f = Eigen::VectorXd::Zero(model.n_free);
-  for (int node = 0; node < model.mesh.n_nodes(); ++node) {
-    Eigen::VectorXd force = model.nodal_force.segment(dim * node, dim);
-    if (!model.frame_of_node.empty() && model.frame_of_node[node] >= 0)
-      force = dof_frame(model, node).transpose() * force;
-    for (int c = 0; c < dim; ++c)
-      if (model.free_index[dim * node + c] >= 0) f[model.free_index[dim * node + c]] += force[c];
-  }
+  add_force_loads(model, f);
   double largest = 0;
   bool finite = true;
   add_elements(dm, qp, f, largest, finite);

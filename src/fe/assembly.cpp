@@ -35,6 +35,9 @@ void refuse_unrepresentable(const Model& model, const QuadraticProgram& qp) {
                                  qp.f.size() ? qp.f.cwiseAbs().maxCoeff() : 0.0, qp.f.allFinite());
 }
 
+}  // namespace
+
+namespace detail {
 // Force loads: f_a = Tᵀ f_x at each node (T its DOF frame); forces at prescribed DOFs go
 // to the reactions.
 void add_force_loads(const Model& model, Eigen::VectorXd& f) {
@@ -48,9 +51,6 @@ void add_force_loads(const Model& model, Eigen::VectorXd& f) {
   }
 }
 
-}  // namespace
-
-namespace detail {
 void refuse_unrepresentable(const Model& model, double largest_k, bool k_finite, double largest_f, bool f_finite) {
   constexpr double kSmallest = std::numeric_limits<double>::min() / std::numeric_limits<double>::epsilon();
   const double thickness = model.scene.body.thickness;
@@ -87,7 +87,7 @@ QuadraticProgram assemble_qp(Model& model, const std::vector<char>& elements) {
   QuadraticProgram qp;
   qp.f = Eigen::VectorXd::Zero(model.n_free);
   detail::assemble_stiffness(model, elements, qp.K, qp.f);
-  add_force_loads(model, qp.f);
+  detail::add_force_loads(model, qp.f);
   refuse_unrepresentable(model, qp);
   detail::add_contact_rows(model, qp);
   detail::add_friction_rows(model, qp);                  // nothing without friction
@@ -120,7 +120,7 @@ void apply_load_step(Model& model, QuadraticProgram& qp, const std::vector<doubl
   model.prescribed = prescribed;
   model.nodal_force = nodal_force;
   qp.f = detail::prescribed_forces(model);
-  add_force_loads(model, qp.f);
+  detail::add_force_loads(model, qp.f);
   detail::add_contact_rows(model, qp);  // the same B; g with this step's prescribed values
 }
 
