@@ -23,18 +23,28 @@ int process_count();
 // PETSc is built in, Ipopt's MUMPS resolves to PETSc's MPI build, which aborts without MPI.
 void start_process_runtime(const std::map<std::string, std::string>& library_options = {});
 
+// Connects the processes launched together (MPI alone, no library on it yet), once per process,
+// if a runtime is built in; nothing otherwise. main() calls it first when the launcher says there
+// are several, so that every failure, even in reading the scene, is agreed at the next phase
+// boundary (run/phases.hpp). start_process_runtime() later finds the connection and uses it.
+void connect_processes();
+
 // How a run ends on every process at once. Every process passes its exit status and its error
 // line (empty when it has none); the lowest-numbered process with a line prints it to stderr,
-// once for the run, and the result is the largest status. Collective while the runtime runs on
+// once for the run (naming its process when not every process failed), and the result is the largest status. Collective while the runtime runs on
 // several processes. A process that failed waits at most `timeout_seconds` for the others (they
 // may be stuck in a collective call it left), then prints its line and ends them all: never a hang.
-int agree_on_exit(int status, const std::string& error_line, double timeout_seconds = 60);
+// 30 s: long enough for the others to reach a boundary from any phase of a large run's step,
+// short enough that a run stuck in a collective ends well within a minute.
+constexpr double failure_grace_seconds = 30;
+int agree_on_exit(int status, const std::string& error_line, double timeout_seconds = failure_grace_seconds);
 
 // What a runtime of several processes registers (from its own file, CONTACTQP_BUILTIN).
 struct ProcessRuntime {
   std::function<int()> rank;   // this process's index while the runtime runs, else −1
   std::function<int()> count;  // the number of processes while it runs, else 0
   std::function<void(const std::map<std::string, std::string>& library_options)> start;
+  std::function<void()> connect;  // connect_processes()
   // agree_on_exit() over the processes, while count() > 1.
   std::function<int(int status, const std::string& error_line, double timeout_seconds)> agree_on_exit;
 };

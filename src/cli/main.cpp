@@ -6,8 +6,12 @@
 #include "commands.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/processes.hpp"
+#include "run/phases.hpp"
 
 int main(int argc, char** argv) {
+  // Launched as several processes (mpirun): connected first, so that a failure on one of them,
+  // anywhere, is heard (src/run/phases.hpp).
+  if (contactqp::process_count() > 1) contactqp::connect_processes();
   CLI::App app{"contactqp: frictionless contact of elastic bodies with rigid obstacles, as one QP"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "contactqp 0.1.0");
@@ -38,6 +42,10 @@ int main(int argc, char** argv) {
     return app.exit(help);
   } catch (const CLI::CallForVersion& version) {
     return app.exit(version);
+  } catch (const contactqp::detail::FailedElsewhere& failed) {
+    // Another process failed and printed the line; the agreement is made.
+    std::cout << std::flush;
+    return failed.status();
   } catch (const CLI::ParseError& error) {
     // One line, like every other bad input.
     std::string text = error.what();
@@ -55,5 +63,5 @@ int main(int argc, char** argv) {
     exit_status = 1;
   }
   std::cout << std::flush;
-  return contactqp::agree_on_exit(exit_status, error_line);
+  return contactqp::agree_on_exit(exit_status, error_line, contactqp::detail::failed_process_grace_seconds());
 }

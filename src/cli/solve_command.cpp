@@ -2,13 +2,18 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
+#include <memory>
+#include <vector>
 
 #include "commands.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/processes.hpp"
 #include "contactqp/run.hpp"
+#include "io/temporary_file.hpp"
 #include "phase_memory.hpp"
 #include "progress.hpp"
+#include "run/distributed_run.hpp"
+#include "run/phases.hpp"
 
 namespace contactqp::cli {
 
@@ -67,18 +72,31 @@ int run_solve(const SolveArguments& arguments) {
       arguments.scene_path,
       {{"--json", arguments.json_path}, {"--csv", arguments.csv_path}, {"--vtu", arguments.vtu_path}});
   require(arguments.max_elements > 0, "--max-elements", arguments.max_elements, "must be positive");
+  detail::begin_phase("read");
   Scene scene = load_scene(arguments.scene_path);
   apply_overrides(arguments, scene.solver);
 
   RunOptions options;
   options.build.max_elements = arguments.max_elements;
   options.no_contact = arguments.no_contact;
+  options.distributed = arguments.distributed;
+  // A distributed run writes its ParaView file in pieces, one per process, joined by a .pvtu.
+  const bool distributed = detail::runs_distributed(scene, options);
+  const bool parallel_file =
+      arguments.vtu_path.size() > 5 && arguments.vtu_path.compare(arguments.vtu_path.size() - 5, 5, ".pvtu") == 0;
+  if (!arguments.vtu_path.empty() && distributed != parallel_file)
+    throw InputError("--vtu",
+                     "= " + arguments.vtu_path +
+                         (distributed ? ": a distributed run (petsc under mpirun) writes one piece per process, "
+                                        "joined by a .pvtu file: name one"
+                                      : ": a .pvtu file is written by a distributed run (petsc under mpirun); "
+                                        "name a .vtu file"));
   RunReport report;
   std::string memory_line;
+  // Under mpirun rank 0 alone shows progress, prints and writes the result files; in a
+  // distributed run every rank writes its piece of the ParaView file.
+  const bool writer = process_rank() == 0;
   {
-    // Under mpirun every rank holds the whole result: rank 0 alone shows progress, prints and
-    // writes the files.
-    const bool writer = process_rank() == 0;
     ProgressLine progress(!arguments.quiet && writer);
     PhaseMemory memory;
     options.on_phase = [&progress, &memory, &arguments](const char* phase) {
@@ -86,19 +104,38 @@ int run_solve(const SolveArguments& arguments) {
       if (arguments.phase_memory) memory.start(phase);
     };
     report = run_scene(scene, options);
-    if (!writer) return report.result.status == Status::Converged ? 0 : 1;
     // The output files: the CSV and the ParaView file, timed as "write", then the JSON, which
-    // records that time.
+    // records that time. Each is written beside its target and renamed into place only once
+    // every rank has got that far: a rank that failed meanwhile leaves no file.
+    detail::begin_phase("write");
     progress.set("write", 0);
     if (arguments.phase_memory) memory.start("write");
+    std::vector<std::unique_ptr<detail::TemporaryFile>> staged;
+    const auto stage = [&staged](const std::string& path, const std::string& content) {
+      staged.push_back(std::make_unique<detail::TemporaryFile>(path));
+      staged.back()->write(content);
+    };
+    const auto commit = [&staged] {
+      detail::checkpoint();
+      for (const auto& file : staged) file->commit();
+    };
     Stopwatch clock;
+    // A distributed run's pieces of the ParaView file, one per rank (collective; they and the
+    // .pvtu appear together or not at all, src/distributed/distributed_post.cpp).
+    if (report.write_pieces && !arguments.vtu_path.empty()) report.write_pieces(arguments.vtu_path);
+    if (!writer) {
+      commit();  // meets rank 0's, where it renames its files into place
+      // Each rank's own peaks, one line each (what a rank holds is the point of a distributed run).
+      if (arguments.phase_memory) std::cerr << memory.finish(" (rank " + std::to_string(process_rank()) + ")");
+      return report.result.status == Status::Converged ? 0 : 1;
+    }
     const std::pair<const std::string*, std::string (*)(const RunReport&)> files[] = {
         {&arguments.csv_path, profile_csv}, {&arguments.vtu_path, vtu_document}};
     const int n_files = !arguments.json_path.empty() + !arguments.csv_path.empty() + !arguments.vtu_path.empty();
-    int written = 0;
+    int written = report.write_pieces && !arguments.vtu_path.empty();
     for (const auto& [path, document] : files) {
-      if (path->empty()) continue;
-      write_file_atomically(*path, document(report));
+      if (path->empty() || (report.write_pieces && path == &arguments.vtu_path)) continue;
+      stage(*path, document(report));
       progress.set("write", static_cast<double>(++written) / n_files);
     }
     // "write" goes before "total", which then covers it too (all but the JSON's own writing).
@@ -109,7 +146,8 @@ int run_solve(const SolveArguments& arguments) {
     timings.add("write", write_seconds);
     timings.add("total", report.timings.get("total") + write_seconds);
     report.timings = timings;
-    if (!arguments.json_path.empty()) write_file_atomically(arguments.json_path, result_json(report));
+    if (!arguments.json_path.empty()) stage(arguments.json_path, result_json(report));
+    commit();
     if (arguments.phase_memory) memory_line = memory.finish();
   }
   std::cerr << memory_line;  // after the progress line is erased
@@ -175,6 +213,9 @@ void add_solve_command(CLI::App& app, int& exit_status) {
   refuse_empty(command->add_option("--ordering", arguments->ordering,
                                    "Fill-reducing ordering of K: amd (default), metis or auto"));
   add_linear_solver_options(*command, *arguments);
+  command->add_flag("--distributed", arguments->distributed,
+                    "Each process holds only its part of the mesh, model and output (petsc backend; under mpirun "
+                    "anyway): for a one-process run of the distributed path");
   command->add_flag("--no-contact", arguments->no_contact,
                     "Drop the contact rows: one linear solve of the same K (the reference for timings)");
   command->footer(backends_help());

@@ -30,19 +30,25 @@ void rotate_to_dof_frames(const Model& model, const int* v, int npe, Eigen::Matr
 // entries within round-off of the largest are subnormal and lose digits (E = 1e-320 gave
 // "converged" with P = 0).
 void refuse_unrepresentable(const Model& model, const QuadraticProgram& qp) {
-  constexpr double kSmallest = std::numeric_limits<double>::min() / std::numeric_limits<double>::epsilon();
   const Eigen::Map<const Eigen::VectorXd> k_values(qp.K.valuePtr(), qp.K.nonZeros());
-  const double largest_k = k_values.size() ? k_values.cwiseAbs().maxCoeff() : 1.0;
-  const double largest_f = qp.f.size() ? qp.f.cwiseAbs().maxCoeff() : 0.0;
+  detail::refuse_unrepresentable(model, k_values.size() ? k_values.cwiseAbs().maxCoeff() : 1.0, k_values.allFinite(),
+                                 qp.f.size() ? qp.f.cwiseAbs().maxCoeff() : 0.0, qp.f.allFinite());
+}
+
+}  // namespace
+
+namespace detail {
+void refuse_unrepresentable(const Model& model, double largest_k, bool k_finite, double largest_f, bool f_finite) {
+  constexpr double kSmallest = std::numeric_limits<double>::min() / std::numeric_limits<double>::epsilon();
   const double thickness = model.scene.body.thickness;
   const std::string stiffness =
       "= " + detail::format_value(model.scene.material.E) +
       (thickness != 1 ? " (body.thickness = " + detail::format_value(thickness) + ")" : std::string());
-  if (!k_values.allFinite())
+  if (!k_finite)
     throw InputError("material.E", stiffness + ": the stiffness matrix overflows double precision; use other units");
   if (largest_k < kSmallest)
     throw InputError("material.E", stiffness + ": the stiffness matrix underflows double precision; use other units");
-  if (!qp.f.allFinite())
+  if (!f_finite)
     throw InputError("load",
                      "gives a load vector that overflows double precision (forces or prescribed displacements "
                      "too large for these units); use other units");
@@ -52,9 +58,6 @@ void refuse_unrepresentable(const Model& model, const QuadraticProgram& qp) {
                      "too small for these units); use other units");
 }
 
-}  // namespace
-
-namespace detail {
 Eigen::MatrixXd dof_frame_rotated(const Model& model, const int* v, int npe, Eigen::MatrixXd Ke) {
   rotate_to_dof_frames(model, v, npe, Ke);
   return Ke;

@@ -12,7 +12,9 @@ int mpi_rank();
 int mpi_size();
 // In place, the sum over the ranks (MPI_Allreduce on MPI_COMM_WORLD; collective). Nothing on one rank.
 void sum_over_ranks(double* values, long n);
-// agree_on_exit() (processes.hpp) on MPI_COMM_WORLD.
+// connect_processes() (processes.hpp): MPI alone, before PETSc.
+void connect_mpi();
+// agree_on_exit() (processes.hpp), on a communicator of its own.
 int mpi_agree_on_exit(int status, const std::string& error_line, double timeout_seconds);
 
 // PETSc's options database entries in SolveOptions::library_options ("petsc"), or "".

@@ -78,12 +78,39 @@ void sum_over_ranks(double* values, long n) {
                   MPI_COMM_WORLD);
 }
 
+namespace {
+
+// The agreements' own communicator (a copy of MPI_COMM_WORLD made when MPI starts alone), so
+// that a failed rank's agreement can never be matched with a collective the others are in
+// (sum_over_ranks' MPI_Allreduce on MPI_COMM_WORLD). MPI_COMM_WORLD when PETSc started MPI.
+MPI_Comm agreement_communicator = MPI_COMM_NULL;
+
+void finalize_mpi() {
+  int finalized = 0;
+  MPI_Finalized(&finalized);
+  if (!finalized) MPI_Finalize();
+}
+
+}  // namespace
+
+void connect_mpi() {
+  int initialized = 0;
+  MPI_Initialized(&initialized);
+  if (initialized || MPI_Init(nullptr, nullptr) != MPI_SUCCESS) return;
+  MPI_Comm_dup(MPI_COMM_WORLD, &agreement_communicator);
+  // Registered before PETSc's PetscFinalize (which leaves MPI to whoever started it): runs after it.
+  std::atexit(finalize_mpi);
+}
+
 int mpi_agree_on_exit(int status, const std::string& error_line, double timeout_seconds) {
   const int rank = mpi_rank();
-  // The largest status, and the lowest rank with a line (the largest −rank).
-  int mine[2] = {status, error_line.empty() ? INT_MIN : -rank}, agreed[2] = {0, INT_MIN};
+  // The largest status, the lowest rank with a line (the largest −rank), and whether any rank
+  // has none (then the line names its rank).
+  int mine[3] = {status, error_line.empty() ? INT_MIN : -rank, error_line.empty() ? 1 : 0};
+  int agreed[3] = {0, INT_MIN, 0};
   MPI_Request request = MPI_REQUEST_NULL;
-  MPI_Iallreduce(mine, agreed, 2, MPI_INT, MPI_MAX, MPI_COMM_WORLD, &request);
+  const MPI_Comm comm = agreement_communicator != MPI_COMM_NULL ? agreement_communicator : MPI_COMM_WORLD;
+  MPI_Iallreduce(mine, agreed, 3, MPI_INT, MPI_MAX, comm, &request);
   const auto start = std::chrono::steady_clock::now();
   for (int done = 0;;) {
     MPI_Test(&request, &done, MPI_STATUS_IGNORE);
@@ -91,12 +118,13 @@ int mpi_agree_on_exit(int status, const std::string& error_line, double timeout_
     const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!error_line.empty() && waited > timeout_seconds) {
       // The others are stuck where this rank left them: the last resort.
-      std::cerr << error_line << " (rank " << rank << "; the other ranks did not finish)\n" << std::flush;
+      std::cerr << error_line << " (on rank " << rank << "; the other ranks did not finish)\n" << std::flush;
       MPI_Abort(MPI_COMM_WORLD, status != 0 ? status : 1);
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(error_line.empty() ? 1 : 10));
   }
-  if (!error_line.empty() && agreed[1] == -rank) std::cerr << error_line << "\n";
+  if (!error_line.empty() && agreed[1] == -rank)
+    std::cerr << error_line << (agreed[2] ? " (on rank " + std::to_string(rank) + ")" : std::string()) << "\n";
   return agreed[0];
 }
 
@@ -112,6 +140,7 @@ CONTACTQP_BUILTIN(mpi_processes) {
     std::lock_guard<std::mutex> lock(petsc_mutex());
     PetscRuntime::instance(petsc_options_of(library_options));
   };
+  mpi.connect = connect_mpi;
   mpi.agree_on_exit = mpi_agree_on_exit;
   register_process_runtime(mpi);
 }

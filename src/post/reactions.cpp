@@ -8,6 +8,12 @@ namespace contactqp {
 
 std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
                                 const Eigen::VectorXd& lambda) {
+  (void)qp;  // one row per candidate, in candidate order
+  return reactions(model, u, lambda, [&model](const std::string& name) { return boundary_nodes(model.mesh, name); });
+}
+
+std::vector<Reaction> reactions(const Model& model, const Eigen::VectorXd& u, const Eigen::VectorXd& lambda,
+                                const std::function<std::vector<int>(const std::string&)>& nodes_of) {
   const Mesh& mesh = model.mesh;
   // Only the nodes of prescribed boundaries need their residual, so only the elements at them
   // are visited, in element order: each node's sum is the one a loop over all elements makes.
@@ -15,7 +21,7 @@ std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, 
   bool any = false;
   for (const LoadSpec& load : model.scene.loads)
     if (const DisplacementLoad* d = load.as<DisplacementLoad>()) {
-      for (int node : boundary_nodes(mesh, d->boundary)) prescribed[node] = 1;
+      for (int node : nodes_of(d->boundary)) prescribed[node] = 1;
       any = true;
     }
   if (!any) return {};
@@ -40,7 +46,7 @@ std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, 
   }
   // The obstacles push node i with λ n (a pair's row also its face nodes with −λ N_j n): what
   // remains is the support's push.
-  for (int i = 0; i < qp.n_constraints(); ++i) {
+  for (int i = 0; i < lambda.size(); ++i) {
     const Candidate& c = model.candidates[i];
     if (c.pair >= 0) {
       residual.segment(dim * c.node, dim) -= lambda[i] * c.normal.head(dim);
@@ -56,7 +62,7 @@ std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, 
     const DisplacementLoad* d = load.as<DisplacementLoad>();
     if (!d) continue;
     Reaction reaction{load.path, d->boundary, Eigen::Vector3d::Zero()};
-    for (int node : boundary_nodes(mesh, d->boundary)) reaction.force.head(dim) += residual.segment(dim * node, dim);
+    for (int node : nodes_of(d->boundary)) reaction.force.head(dim) += residual.segment(dim * node, dim);
     // With symmetry the mirrored parts push the same along the axis the cuts share and
     // cancel across it (2D: the scene's y, two halves; 3D: its z, four quarters).
     if (model.scene.body.symmetry) {

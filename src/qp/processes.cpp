@@ -66,6 +66,11 @@ int process_count() {
   return launched >= 1 ? launched : 1;
 }
 
+void connect_processes() {
+  const ProcessRuntime r = runtime();
+  if (r.connect) r.connect();
+}
+
 void start_process_runtime(const std::map<std::string, std::string>& library_options) {
   const ProcessRuntime r = runtime();
   if (r.start) r.start(library_options);

@@ -1,0 +1,51 @@
+// The phases of a run and the boundaries between them, where the processes of a run launched
+// together (mpirun) agree that none has failed (docs/petsc.md, "When one rank fails"). A process
+// that fails leaves its phase at once for main(), which hands its status and its one line to
+// agree_on_exit() (processes.hpp); the others meet that call at their next boundary, learn the
+// status there and end with it, quietly: the failed process prints its line, once.
+//
+// The rule for phase code: work that can fail on one process alone (reading, checking, element
+// loops, allocations) goes before the phase's first call that needs every process (a collective
+// of MPI or PETSc), or a checkpoint() goes between them. A process that fails while the others
+// are inside such a call waits a bounded time for them, prints its line and ends them all.
+#pragma once
+
+#include <exception>
+#include <string>
+
+namespace contactqp::detail {
+
+// Thrown on a process that learns at a boundary that another process failed. main() ends
+// with `status` and says nothing: the process that failed printed the line. No agreement
+// follows (the failed process made its last one).
+class FailedElsewhere : public std::exception {
+ public:
+  explicit FailedElsewhere(int status) : status_(status) {}
+  int status() const { return status_; }
+  const char* what() const noexcept override { return "another process of the run failed"; }
+
+ private:
+  int status_;
+};
+
+// Called by every process as `phase` begins: agrees with the others that none has failed
+// (collective on several processes, nothing on one), then raises the test fault this phase
+// has if CONTACTQP_TEST_FAULT names it (test_fault.cpp). Throws FailedElsewhere.
+void begin_phase(const std::string& phase);
+
+// The same agreement within a phase: before a collective that follows local work that can
+// fail, and before output files are renamed into place (nothing is written unless every
+// process got there).
+void checkpoint();
+
+// How long a process that failed waits for the others to reach a boundary before it prints its
+// line and ends them all (agree_on_exit): failure_grace_seconds (30 s), or the test fault's GRACE.
+double failed_process_grace_seconds();
+
+// CONTACTQP_TEST_FAULT=RANK:PHASE:KIND[:GRACE], for tests only: process RANK throws as PHASE begins —
+// KIND input (InputError, exit 2), error (std::runtime_error, exit 1) or memory (std::bad_alloc,
+// exit 1); GRACE shortens the wait above (seconds). Nothing when the variable is unset; InputError
+// naming it when it is malformed.
+void raise_test_fault(const std::string& phase);
+
+}  // namespace contactqp::detail
