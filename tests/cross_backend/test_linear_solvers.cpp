@@ -76,7 +76,7 @@ TEST_CASE("each solver of K holds a spring against a wall", "[cross_backend][lin
 }
 
 TEST_CASE("with PETSc as the solver of K the backends give CHOLMOD's u on shipped scenes",
-          "[cross_backend][linear_solver][hertz]") {
+          "[cross_backend][linear_solver][hertz][heavy]") {
   if (!petsc_built_in()) return;
   // hertz: the paper's problem; disc-in-vgroove (coarser at the contact, as test_scenes has
   // it, to keep the test short): two obstacles, nodes with a row for each; hertz-sphere (coarse

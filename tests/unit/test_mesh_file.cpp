@@ -34,7 +34,7 @@ std::string scene_naming(const std::string& scene, const std::string& file, bool
 }  // namespace
 
 TEST_CASE("A scene naming the .msh that contactqp mesh wrote solves the same as the scene that generated it",
-          "[unit][mesh_file]") {
+          "[unit][mesh_file][heavy]") {
   TemporaryDirectory directory;
   for (const std::string scene_file : {"scenes/hertz.json", "scenes/hertz-order2.json", "scenes/hertz-sphere.json"}) {
     INFO(scene_file);
@@ -128,7 +128,8 @@ TEST_CASE("A refined half disc: arc nodes on the circle, four triangles per coar
   }
 }
 
-TEST_CASE("A refined quarter hemisphere: Hertz errors no worse than Gmsh's direct mesh", "[unit][mesh_file][3d]") {
+TEST_CASE("A refined quarter hemisphere: Hertz errors no worse than Gmsh's direct mesh",
+          "[unit][mesh_file][3d][heavy]") {
   // scenes/hertz-sphere.json (10-node) as Gmsh meshes it, and Gmsh at 2 (4) times the sizes
   // and grading, each tetrahedron then split into eight, 1 (2) times: the errors against Hertz
   // are no worse (as for the half disc above). Its DOFs are not compared: at these sizes the
@@ -159,7 +160,7 @@ TEST_CASE("A refined quarter hemisphere: Hertz errors no worse than Gmsh's direc
 }
 
 TEST_CASE("A refined 4-node quarter hemisphere at 1.6e5 DOFs: DOFs within 10% of Gmsh's direct mesh",
-          "[unit][mesh_file][3d]") {
+          "[unit][mesh_file][3d][heavy]") {
   // The 4-node sphere at 1.6e5 DOFs (contact_size 0.0035, Gmsh's mesh 11 s): one refinement
   // gives DOFs within 10% of the direct mesh's (+7.4% measured; two give +15%).
   const std::string fine = R"({"body": {"mesh": {"contact_size": 0.0035, "order": 1}}})";

@@ -361,7 +361,7 @@ TEST_CASE("the box with a punch's rim embedded has nodes on the circle and the s
   CHECK(on_rim < 2.0 * length / request.contact_size);
 }
 
-TEST_CASE("the 3D estimates are within a factor of 2 of Gmsh's counts", "[unit][gmsh][3d]") {
+TEST_CASE("the 3D estimates are within a factor of 2 of Gmsh's counts", "[unit][gmsh][3d][heavy]") {
   struct Sizes {
     double size, contact_size, grading, fine_radius;
   };

@@ -137,7 +137,7 @@ TEST_CASE("a cylinder on a block whose E grows to 1e6 x converges to the rigid p
   }
 }
 
-TEST_CASE("two spheres in 3D: a and p0 within 3% of Hertz, action = reaction", "[validation][bodies][3d]") {
+TEST_CASE("two spheres in 3D: a and p0 within 3% of Hertz, action = reaction", "[validation][bodies][3d][heavy]") {
   const RunReport report = contactqp::run_scene(source_path("scenes/two-spheres.json"));
   check_hertz(report, 0.03);
   check_action_reaction(report);
@@ -157,7 +157,8 @@ TEST_CASE("compare on the shipped two-body scenes: every backend converged and a
 
 // The shipped mesh (5.1e4 DOFs, 10-node tetrahedra) costs Uzawa about 260 s (docs/bodies.md has
 // that compare); the agreement of the five backends is checked on the same scene meshed coarser.
-TEST_CASE("compare on the 3D two-body scene: every backend converged and agreeing", "[cross_backend][bodies][3d]") {
+TEST_CASE("compare on the 3D two-body scene: every backend converged and agreeing",
+          "[cross_backend][bodies][3d][heavy]") {
   Scene parsed = load_scene(source_path("scenes/two-spheres.json"));
   for (SceneBody& body : parsed.bodies) body.body.mesh.contact_size *= 2.5;
   parsed.solver.tol = 1e-10;

@@ -130,7 +130,8 @@ std::string scaled_msh22(const std::string& text, double l) {
 
 }  // namespace
 
-TEST_CASE("units: E × 1e±9 and lengths × 1e±3 give the same scaled answer on every backend", "[validation][units]") {
+TEST_CASE("units: E × 1e±9 and lengths × 1e±3 give the same scaled answer on every backend",
+          "[validation][units][heavy]") {
   const Backend backend = GENERATE(from_range(available_backends()));
   TemporaryDirectory directory;
   // A Gmsh file of the Hertz disc (6-node triangles), written by the gmsh program, and the

@@ -44,7 +44,7 @@ TEST_CASE("scenes/hertz-sphere.json matches Hertz's sphere", "[validation][hertz
   CHECK(run.reactions.at(0).force.head<2>().norm() <= 1e-12 * run.contact.total_force);
 }
 
-TEST_CASE("other radii, materials, pushes and meshes stay within Hertz's 3% in 3D", "[validation][hertz][3d]") {
+TEST_CASE("other radii, materials, pushes and meshes stay within Hertz's 3% in 3D", "[validation][hertz][3d][heavy]") {
   const char* patch = GENERATE(
       R"({"body": {"radius": 2.5, "mesh": {"size": 0.5, "contact_size": 0.035}}, "load": {"value": [null, null, -0.025]}})",
       R"({"material": {"E": 210e9, "nu": 0.2}, "load": {"value": [null, null, -0.006]}, "body": {"mesh": {"contact_size": 0.012}}})",
@@ -89,7 +89,7 @@ TEST_CASE("a 3D scene turned about any axis: the same force, a and p0 within 1e-
 }
 
 TEST_CASE("3D units: E × 1e±9 and lengths × 1e±3 give the same scaled answer on every backend",
-          "[validation][units][3d]") {
+          "[validation][units][3d][heavy]") {
   const Backend backend = GENERATE(from_range(available_backends()));
   CAPTURE(to_string(backend));
   const std::string solver =
