@@ -117,13 +117,18 @@ TEST_CASE("a pair's rows measure the relative tangential motion of the two sides
   for (size_t r = 0; r < rows.size(); ++r) {
     const Candidate& c = a.model.candidates[r];
     const Eigen::Vector3d t = detail::row_tangents(a.model, c).front();
-    double common = 0, node_side = 0;
+    double common = 0, node_side = 0, approach = 0;
     for (const auto& [dof, value] : rows[r].entries) {
       common += value * (dof % dim == 0 ? 0.3 : -0.7);  // the translation (0.3, −0.7)
       if (dof / dim == c.node) node_side += value * t[dof % dim];
+      // The node moved towards its partner along the common normal: no slip.
+      if (dof / dim == c.node) approach += value * c.common_normal[dof % dim];
     }
     CHECK(std::abs(common) < 1e-14);
     CHECK(node_side == Approx(1).epsilon(1e-14));
+    CHECK(c.common_normal.norm() == Approx(1).epsilon(1e-14));
+    CHECK(c.common_normal.dot(c.normal) > 0.9);
+    if (all_free(a.model, c.node)) CHECK(std::abs(approach) < 1e-14);  // on the plane t is the plane's normal
   }
 }
 
