@@ -19,13 +19,19 @@ if [ "${1:-}" = "--fix" ]; then
   "$format" -i $files
   exit 0
 fi
-unformatted=""
-for f in $files; do
-  "$format" --dry-run --Werror "$f" >/dev/null 2>&1 || unformatted="$unformatted $f"
-done
+# One clang-format process for all files: one per file cost 35 s of CPU in CI, nearly all of it
+# in starting the program 259 times (one process: about 1 s).
+status=0
+# shellcheck disable=SC2086
+report=$("$format" --dry-run --Werror $files 2>&1) || status=$?
+unformatted=$(printf '%s\n' "$report" | sed -n 's/^\([^:]*\):[0-9]*:[0-9]*: error: code should be clang-formatted.*/\1/p' | sort -u)
 if [ -n "$unformatted" ]; then
   echo "check-format: not formatted by .clang-format (run tools/check-format.sh --fix):" >&2
   for f in $unformatted; do echo "  $f" >&2; done
+  exit 1
+fi
+if [ "$status" -ne 0 ]; then
+  printf '%s\n' "$report" >&2
   exit 1
 fi
 echo "check-format: $(echo "$files" | wc -w) files formatted"

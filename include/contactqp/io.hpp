@@ -1,6 +1,7 @@
 // Output files: the result JSON, the pressure profile CSV, written atomically.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -21,6 +22,11 @@ void check_output_path(const std::string& path, const std::string& field);
 // file or the complete new one, never a half-written one. Throws std::runtime_error on failure
 // (and removes the temporary file).
 void write_file_atomically(const std::string& path, const std::string& content);
+
+// The whole problem's size, whichever process holds what of it.
+struct ProblemSize {
+  long long nodes = 0, elements = 0, dofs = 0, constraints = 0;
+};
 
 // One load step of a run with steps (scene.steps, docs/friction.md): what it solved and the
 // contact it gave, post-processed as the run's last state is.
@@ -56,6 +62,11 @@ struct RunReport {
   Timings timings;                            // every phase: mesh, assemble, factorize, solve, ..., total
   bool no_contact = false;                    // a linear solve with the contact rows dropped (--no-contact)
   std::vector<std::string> warnings;          // also printed on stderr
+  ProblemSize size;                           // the mesh's nodes and elements, the QP's DOFs and rows
+  // A run whose processes each hold part of the mesh (mpirun, src/distributed/) writes its
+  // ParaView file in pieces: every process calls this with the .pvtu path (collective), which
+  // writes its piece beside it and, on the first process, the .pvtu. Empty otherwise.
+  std::function<void(const std::string& pvtu_path)> write_pieces;
 };
 
 // The result JSON (docs/cli.md, "Result file"). Numbers that are not finite are written as null.
@@ -73,5 +84,28 @@ std::string profile_csv(const RunReport& report);
 // to the nearest obstacle elsewhere; 0 off it) and "contact_boundary" (1 on it, 0 off it).
 // Binary (base64) arrays; no NaN.
 std::string vtu_document(const RunReport& report);
+
+// The pieces of vtu_document(), for a ParaView file written in pieces (one per MPI rank, each
+// its rank's elements and their nodes; src/distributed/): one array at the nodes (Float64,
+// `components` per node, n_points × components values from `values`, or from `storage`).
+struct PointArray {
+  std::string name;
+  int components = 1;
+  const double* values = nullptr;
+  std::vector<double> storage;  // when the array was made for the file (2D vectors as 3 components)
+};
+// Pressure, contact force (dim per node), gap and the contact-boundary mask at every node.
+struct ContactFields {
+  Eigen::VectorXd pressure, force, gap, mask;
+};
+// vtu_document()'s arrays, in its order, of a model's nodes ("body" only when given).
+std::vector<PointArray> solution_arrays(const Model& model, const Eigen::VectorXd& displacement,
+                                        const NodalStress& stress, const ContactFields& contact,
+                                        const Eigen::VectorXd* body = nullptr);
+// A VTK XML unstructured grid (.vtu) of `mesh` with `arrays`, as vtu_document() writes it.
+std::string vtu_piece(const Mesh& mesh, const std::vector<PointArray>& arrays);
+// The parallel file (.pvtu) that joins pieces with these arrays (their values are not read):
+// `pieces` are the piece files' names relative to the .pvtu.
+std::string pvtu_document(const std::vector<PointArray>& arrays, const std::vector<std::string>& pieces);
 
 }  // namespace contactqp

@@ -4,6 +4,7 @@
 // flat punch (3D).
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -145,6 +146,13 @@ std::vector<double> nodal_pressures(const Model& model, const QuadraticProgram& 
 
 ContactSummary summarize_contact(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
                                  const Eigen::VectorXd& lambda);
+// The same in parts, for a model in pieces (src/distributed/): the summary of the rows (from λ
+// and the candidates alone; the penetration counts left 0), and the count of the boundary nodes
+// `nodes` outside the candidate set that entered an obstacle by more than `tolerance`, added to
+// `summary` (displacement: full_displacement() of the model).
+ContactSummary summarize_contact_rows(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& lambda);
+void count_penetrating(const Model& model, const Eigen::VectorXd& displacement, const std::vector<int>& nodes,
+                       double tolerance, ContactSummary& summary);
 
 struct HertzComparison {
   int dim = 2;  // 2: two cylinders (b, per length); 3: two spheres (a)
@@ -247,6 +255,13 @@ struct Reaction {
 };
 std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
                                 const Eigen::VectorXd& lambda, const Eigen::VectorXd& lambda_t = Eigen::VectorXd());
+// The same with a boundary's nodes given by `nodes_of` (a part of a mesh knows a node lies on a
+// boundary whose face is another rank's), λ one per candidate (0 for the rows of other ranks)
+// and the friction's nodal forces (friction_nodal_forces(); none when empty). A part's sums are
+// its elements' and rows' share: the whole's are their sums over the parts.
+std::vector<Reaction> reactions(const Model& model, const Eigen::VectorXd& u, const Eigen::VectorXd& lambda,
+                                const std::function<std::vector<int>(const std::string&)>& nodes_of,
+                                const Eigen::VectorXd& friction_forces = Eigen::VectorXd());
 
 // Nodal stresses (force per area), averaged over the elements sharing each node (weighted by
 // their areas or volumes) from each element's stress at that node. In 2D σzz = ν(σxx + σyy)
@@ -257,6 +272,16 @@ struct NodalStress {
   Eigen::VectorXd xx, yy, xy, zz, yz, xz, von_mises;  // n_nodes each
 };
 NodalStress nodal_stresses(const Model& model, const Eigen::VectorXd& displacement);  // full_displacement()
+
+// The same in two steps, for a mesh in pieces (src/distributed/ adds the sums of the ranks that
+// share a node before dividing): Σ over a node's elements of measure × the element's stress
+// there (rows σxx, σyy, σxy, σzz, σyz, σxz) and Σ of the measures.
+struct StressSums {
+  Eigen::MatrixXd sum;     // 6 × n_nodes
+  Eigen::VectorXd weight;  // n_nodes
+};
+StressSums stress_sums(const Model& model, const Eigen::VectorXd& displacement);
+NodalStress nodal_stresses(const StressSums& sums, int dim);
 
 // Boussinesq's rigid flat circular punch of radius a pressed by δ into a half-space (3D):
 // P = 2 a E* δ and p(r) = P / (2π a sqrt(a² − r²)). δ is the approach the scene prescribes:

@@ -28,6 +28,10 @@ namespace contactqp {
 struct RunOptions {
   BuildOptions build;       // mesh limits (max_elements)
   bool no_contact = false;  // drop the contact rows: one linear solve of the same K (the unit of cost)
+  // Each process holds only its part of the mesh, the model and the output (docs/petsc.md,
+  // "Distributed runs"). The petsc backend under mpirun does so anyway; true asks for it on one
+  // process too (then "model" is a phase of its own, after "mesh").
+  bool distributed = false;
   // Called as each phase starts: "mesh" (with the model), "assemble", "solve", "certify",
   // "postprocess". For a progress display; empty: not called.
   std::function<void(const char* phase)> on_phase;

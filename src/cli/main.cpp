@@ -12,7 +12,7 @@ int main(int argc, char** argv) {
   // Launched as several processes (mpirun): connected first, so that a failure on one of them,
   // anywhere, is heard (src/run/phases.hpp).
   if (contactqp::process_count() > 1) contactqp::connect_processes();
-  CLI::App app{"contactqp: frictionless contact of elastic bodies with rigid obstacles, as one QP"};
+  CLI::App app{"contactqp: contact of elastic bodies with rigid obstacles, frictionless or with friction, as QPs"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "contactqp 0.1.0");
   int exit_status = 0;

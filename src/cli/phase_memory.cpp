@@ -8,13 +8,13 @@
 namespace contactqp::cli {
 namespace {
 
-// VmHWM in MiB, or a negative number when /proc does not give it.
-double peak_resident_mib() {
+// A line of /proc/self/status ("VmHWM:", "VmRSS:") in MiB, or a negative number without it.
+double status_mib(const std::string& key) {
   std::ifstream status("/proc/self/status");
   std::string line;
   while (std::getline(status, line))
-    if (line.rfind("VmHWM:", 0) == 0) {
-      std::istringstream fields(line.substr(6));
+    if (line.rfind(key, 0) == 0) {
+      std::istringstream fields(line.substr(key.size()));
       double kib = -1;
       fields >> kib;
       return kib / 1024;
@@ -30,20 +30,24 @@ void reset_peak() {
 }  // namespace
 
 void PhaseMemory::start(const std::string& phase) {
-  if (!phase_.empty()) peaks_.emplace_back(phase_, peak_resident_mib());
+  if (!phase_.empty()) phases_.push_back({phase_, start_mib_, status_mib("VmHWM:")});
   phase_ = phase;
+  start_mib_ = status_mib("VmRSS:");
   reset_peak();
 }
 
-std::string PhaseMemory::finish() {
+std::string PhaseMemory::finish(const std::string& who) {
   start("");
-  std::string line = "contactqp: peak memory [MiB]:";
-  for (const auto& [phase, mib] : peaks_) {
-    if (mib < 0) return "";
-    line += format(" %s %.1f,", phase.c_str(), mib);
+  std::string peaks = "contactqp: peak memory [MiB]" + who + ":";
+  std::string starts = "contactqp: memory at phase start [MiB]" + who + ":";
+  for (const Phase& phase : phases_) {
+    if (phase.peak_mib < 0) return "";
+    peaks += format(" %s %.1f,", phase.name.c_str(), phase.peak_mib);
+    starts += format(" %s %.1f,", phase.name.c_str(), phase.start_mib);
   }
-  line.back() = '\n';
-  return line;
+  peaks.back() = '\n';
+  starts.back() = '\n';
+  return peaks + starts;
 }
 
 }  // namespace contactqp::cli

@@ -12,6 +12,7 @@
 #include "io/temporary_file.hpp"
 #include "phase_memory.hpp"
 #include "progress.hpp"
+#include "run/distributed_run.hpp"
 #include "run/phases.hpp"
 
 namespace contactqp::cli {
@@ -78,12 +79,24 @@ int run_solve(const SolveArguments& arguments) {
   RunOptions options;
   options.build.max_elements = arguments.max_elements;
   options.no_contact = arguments.no_contact;
+  options.distributed = arguments.distributed;
+  // A distributed run writes its ParaView file in pieces, one per process, joined by a .pvtu.
+  const bool distributed = detail::runs_distributed(scene, options);
+  const bool parallel_file =
+      arguments.vtu_path.size() > 5 && arguments.vtu_path.compare(arguments.vtu_path.size() - 5, 5, ".pvtu") == 0;
+  if (!arguments.vtu_path.empty() && distributed != parallel_file)
+    throw InputError("--vtu",
+                     "= " + arguments.vtu_path +
+                         (distributed ? ": a distributed run (petsc under mpirun) writes one piece per process, "
+                                        "joined by a .pvtu file: name one"
+                                      : ": a .pvtu file is written by a distributed run (petsc under mpirun); "
+                                        "name a .vtu file"));
   RunReport report;
   std::string memory_line;
+  // Under mpirun rank 0 alone shows progress, prints and writes the result files; in a
+  // distributed run every rank writes its piece of the ParaView file.
+  const bool writer = process_rank() == 0;
   {
-    // Under mpirun every rank holds the whole result: rank 0 alone shows progress, prints and
-    // writes the files.
-    const bool writer = process_rank() == 0;
     ProgressLine progress(!arguments.quiet && writer);
     PhaseMemory memory;
     options.on_phase = [&progress, &memory, &arguments](const char* phase) {
@@ -106,17 +119,22 @@ int run_solve(const SolveArguments& arguments) {
       detail::checkpoint();
       for (const auto& file : staged) file->commit();
     };
+    Stopwatch clock;
+    // A distributed run's pieces of the ParaView file, one per rank (collective; they and the
+    // .pvtu appear together or not at all, src/distributed/distributed_post.cpp).
+    if (report.write_pieces && !arguments.vtu_path.empty()) report.write_pieces(arguments.vtu_path);
     if (!writer) {
-      commit();
+      commit();  // meets rank 0's, where it renames its files into place
+      // Each rank's own peaks, one line each (what a rank holds is the point of a distributed run).
+      if (arguments.phase_memory) std::cerr << memory.finish(" (rank " + std::to_string(process_rank()) + ")");
       return report.result.status == Status::Converged ? 0 : 1;
     }
-    Stopwatch clock;
     const std::pair<const std::string*, std::string (*)(const RunReport&)> files[] = {
         {&arguments.csv_path, profile_csv}, {&arguments.vtu_path, vtu_document}};
     const int n_files = !arguments.json_path.empty() + !arguments.csv_path.empty() + !arguments.vtu_path.empty();
-    int written = 0;
+    int written = report.write_pieces && !arguments.vtu_path.empty();
     for (const auto& [path, document] : files) {
-      if (path->empty()) continue;
+      if (path->empty() || (report.write_pieces && path == &arguments.vtu_path)) continue;
       stage(*path, document(report));
       progress.set("write", static_cast<double>(++written) / n_files);
     }
@@ -195,6 +213,9 @@ void add_solve_command(CLI::App& app, int& exit_status) {
   refuse_empty(command->add_option("--ordering", arguments->ordering,
                                    "Fill-reducing ordering of K: amd (default), metis or auto"));
   add_linear_solver_options(*command, *arguments);
+  command->add_flag("--distributed", arguments->distributed,
+                    "Each process holds only its part of the mesh, model and output (petsc backend; under mpirun "
+                    "anyway): for a one-process run of the distributed path");
   command->add_flag("--no-contact", arguments->no_contact,
                     "Drop the contact rows: one linear solve of the same K (the reference for timings)");
   command->footer(backends_help());

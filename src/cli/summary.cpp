@@ -94,9 +94,9 @@ std::string summary_table(const RunReport& report) {
                 : solid ? (" (half, symmetric about " + symmetry_name(scene.body) + " = 0)").c_str()
                         : " (half, symmetric)",
                 scene.material.E, scene.material.nu);
-  out += format("  mesh         %d nodes, %d %s (order %d), %d DOFs, %d contact candidates (gap <= %g)\n",
-                model.mesh.n_nodes(), model.mesh.n_elements(), solid ? "tetrahedra" : "triangles", model.mesh.order,
-                report.qp->n_dofs(), report.qp->n_constraints(), model.max_gap);
+  out += format("  mesh         %lld nodes, %lld %s (order %d), %lld DOFs, %lld contact candidates (gap <= %g)\n",
+                report.size.nodes, report.size.elements, solid ? "tetrahedra" : "triangles", model.mesh.order,
+                report.size.dofs, report.size.constraints, model.max_gap);
   std::string rho;
   auto it = result.diagnostics.find("rho");
   if (it != result.diagnostics.end()) {

@@ -44,12 +44,19 @@ struct BoundaryNodeGeometry {
   std::vector<double> tributary;
 };
 BoundaryNodeGeometry boundary_geometry(const Mesh& mesh, const std::string& boundary);
+// The same before the normals are made unit: sums over the boundary's faces, which a
+// distributed mesh adds up over the ranks holding a node first (src/distributed/).
+BoundaryNodeGeometry boundary_sums(const Mesh& mesh, const std::string& boundary);
+void normalise_normals(BoundaryNodeGeometry& geometry);
 
 // Nodes of the contact boundary that face an obstacle and whose initial gap is at most
 // `max_gap`: one candidate per (node, obstacle). Facing: the boundary's outward normal at
 // the node points against the obstacle normal at the closest point.
 std::vector<Candidate> select_candidates(const Mesh& mesh, const std::vector<ObstacleSpec>& obstacles,
                                          const std::string& boundary, double max_gap);
+// The same from the boundary's nodes as boundary_geometry() gives them.
+std::vector<Candidate> select_candidates(const Mesh& mesh, const std::vector<ObstacleSpec>& obstacles,
+                                         const BoundaryNodeGeometry& geometry, double max_gap);
 
 // pair_rows.cpp: the point of a boundary face closest to p (initial or deformed positions x):
 // its shape weights N_j (face node order), the face's outward unit normal there, the face's
@@ -100,6 +107,14 @@ std::vector<Candidate> select_pair_candidates(const Mesh& mesh, const std::strin
 // Drops candidates with no free DOF along the obstacle normal (their position is prescribed):
 // they add no unknown. InputError when such a prescribed position penetrates the obstacle.
 void remove_prescribed_candidates(Model& model);
+
+// The row of one candidate: its coefficients on the free DOFs (model.free_index), and g with
+// the prescribed part moved in. An obstacle's row has the node's own DOFs only.
+struct ContactRowEntries {
+  std::vector<std::pair<int, double>> coefficients;  // (free column, −n_c)
+  double g = 0;
+};
+ContactRowEntries contact_row(const Model& model, const Candidate& candidate);
 
 // friction_rows.cpp: friction (friction.hpp, docs/friction.md).
 // The friction section that applies to a candidate's row, or nullptr (frictionless).

@@ -69,7 +69,7 @@ void add_face(const Mesh& mesh, const BoundaryFace& face, NodeSums& per_node) {
 
 }  // namespace
 
-BoundaryNodeGeometry boundary_geometry(const Mesh& mesh, const std::string& boundary) {
+BoundaryNodeGeometry boundary_sums(const Mesh& mesh, const std::string& boundary) {
   NodeSums per_node;  // node -> (normal sum, tributary)
   auto it = mesh.boundaries.find(boundary);
   if (it != mesh.boundaries.end()) {
@@ -83,15 +83,30 @@ BoundaryNodeGeometry boundary_geometry(const Mesh& mesh, const std::string& boun
   BoundaryNodeGeometry geometry;
   for (const auto& [node, entry] : per_node) {
     geometry.nodes.push_back(node);
-    geometry.normals.push_back(entry.first.norm() > 0 ? Eigen::Vector3d(entry.first.normalized()) : entry.first);
+    geometry.normals.push_back(entry.first);
     geometry.tributary.push_back(entry.second);
   }
   return geometry;
 }
 
+void normalise_normals(BoundaryNodeGeometry& geometry) {
+  for (Eigen::Vector3d& n : geometry.normals)
+    if (n.norm() > 0) n.normalize();
+}
+
+BoundaryNodeGeometry boundary_geometry(const Mesh& mesh, const std::string& boundary) {
+  BoundaryNodeGeometry geometry = boundary_sums(mesh, boundary);
+  normalise_normals(geometry);
+  return geometry;
+}
+
 std::vector<Candidate> select_candidates(const Mesh& mesh, const std::vector<ObstacleSpec>& obstacles,
                                          const std::string& boundary, double max_gap) {
-  const BoundaryNodeGeometry geometry = boundary_geometry(mesh, boundary);
+  return select_candidates(mesh, obstacles, boundary_geometry(mesh, boundary), max_gap);
+}
+
+std::vector<Candidate> select_candidates(const Mesh& mesh, const std::vector<ObstacleSpec>& obstacles,
+                                         const BoundaryNodeGeometry& geometry, double max_gap) {
   std::vector<Candidate> candidates;
   for (size_t k = 0; k < geometry.nodes.size(); ++k) {
     const int node = geometry.nodes[k];
@@ -114,12 +129,6 @@ std::vector<Candidate> select_candidates(const Mesh& mesh, const std::vector<Obs
 }
 
 namespace {
-
-// The row of one candidate: coefficients on free DOFs, and g with the prescribed part moved in.
-struct ContactRowEntries {
-  std::vector<std::pair<int, double>> coefficients;  // (free column, −n_c)
-  double g = 0;
-};
 
 // A row between two bodies: −nᵀ u_i + Σ_j N_j nᵀ u_j ≤ g (no DOF frames: a scene with bodies
 // has no transform).
@@ -145,7 +154,9 @@ ContactRowEntries pair_row_of(const Model& model, const Candidate& candidate) {
   return row;
 }
 
-ContactRowEntries row_of(const Model& model, const Candidate& candidate) {
+}  // namespace
+
+ContactRowEntries contact_row(const Model& model, const Candidate& candidate) {
   if (candidate.pair >= 0) return pair_row_of(model, candidate);
   const ObstacleProjection projection =
       project(model.scene.obstacles[candidate.obstacle], model.mesh.nodes[candidate.node]);
@@ -170,12 +181,10 @@ ContactRowEntries row_of(const Model& model, const Candidate& candidate) {
   return row;
 }
 
-}  // namespace
-
 void remove_prescribed_candidates(Model& model) {
   std::vector<Candidate> kept;
   for (const Candidate& candidate : model.candidates) {
-    const ContactRowEntries row = row_of(model, candidate);
+    const ContactRowEntries row = contact_row(model, candidate);
     if (!row.coefficients.empty()) {
       kept.push_back(candidate);
       continue;
@@ -203,7 +212,7 @@ void add_contact_rows(const Model& model, QuadraticProgram& qp) {
   qp.rows.resize(m);
   for (int i = 0; i < m; ++i) {
     const Candidate& candidate = model.candidates[i];
-    const ContactRowEntries row = row_of(model, candidate);
+    const ContactRowEntries row = contact_row(model, candidate);
     for (const auto& [column, value] : row.coefficients) entries.emplace_back(i, column, value);
     qp.g[i] = row.g;
     qp.rows[i] = {candidate.node, candidate.obstacle, candidate.pair};

@@ -30,28 +30,14 @@ void rotate_to_dof_frames(const Model& model, const int* v, int npe, Eigen::Matr
 // entries within round-off of the largest are subnormal and lose digits (E = 1e-320 gave
 // "converged" with P = 0).
 void refuse_unrepresentable(const Model& model, const QuadraticProgram& qp) {
-  constexpr double kSmallest = std::numeric_limits<double>::min() / std::numeric_limits<double>::epsilon();
   const Eigen::Map<const Eigen::VectorXd> k_values(qp.K.valuePtr(), qp.K.nonZeros());
-  const double largest_k = k_values.size() ? k_values.cwiseAbs().maxCoeff() : 1.0;
-  const double largest_f = qp.f.size() ? qp.f.cwiseAbs().maxCoeff() : 0.0;
-  const double thickness = model.scene.body.thickness;
-  const std::string stiffness =
-      "= " + detail::format_value(model.scene.material.E) +
-      (thickness != 1 ? " (body.thickness = " + detail::format_value(thickness) + ")" : std::string());
-  if (!k_values.allFinite())
-    throw InputError("material.E", stiffness + ": the stiffness matrix overflows double precision; use other units");
-  if (largest_k < kSmallest)
-    throw InputError("material.E", stiffness + ": the stiffness matrix underflows double precision; use other units");
-  if (!qp.f.allFinite())
-    throw InputError("load",
-                     "gives a load vector that overflows double precision (forces or prescribed displacements "
-                     "too large for these units); use other units");
-  if (largest_f > 0 && largest_f < kSmallest)
-    throw InputError("load",
-                     "gives a load vector that underflows double precision (forces or prescribed displacements "
-                     "too small for these units); use other units");
+  detail::refuse_unrepresentable(model, k_values.size() ? k_values.cwiseAbs().maxCoeff() : 1.0, k_values.allFinite(),
+                                 qp.f.size() ? qp.f.cwiseAbs().maxCoeff() : 0.0, qp.f.allFinite());
 }
 
+}  // namespace
+
+namespace detail {
 // Force loads: f_a = Tᵀ f_x at each node (T its DOF frame); forces at prescribed DOFs go
 // to the reactions.
 void add_force_loads(const Model& model, Eigen::VectorXd& f) {
@@ -65,9 +51,26 @@ void add_force_loads(const Model& model, Eigen::VectorXd& f) {
   }
 }
 
-}  // namespace
+void refuse_unrepresentable(const Model& model, double largest_k, bool k_finite, double largest_f, bool f_finite) {
+  constexpr double kSmallest = std::numeric_limits<double>::min() / std::numeric_limits<double>::epsilon();
+  const double thickness = model.scene.body.thickness;
+  const std::string stiffness =
+      "= " + detail::format_value(model.scene.material.E) +
+      (thickness != 1 ? " (body.thickness = " + detail::format_value(thickness) + ")" : std::string());
+  if (!k_finite)
+    throw InputError("material.E", stiffness + ": the stiffness matrix overflows double precision; use other units");
+  if (largest_k < kSmallest)
+    throw InputError("material.E", stiffness + ": the stiffness matrix underflows double precision; use other units");
+  if (!f_finite)
+    throw InputError("load",
+                     "gives a load vector that overflows double precision (forces or prescribed displacements "
+                     "too large for these units); use other units");
+  if (largest_f > 0 && largest_f < kSmallest)
+    throw InputError("load",
+                     "gives a load vector that underflows double precision (forces or prescribed displacements "
+                     "too small for these units); use other units");
+}
 
-namespace detail {
 Eigen::MatrixXd dof_frame_rotated(const Model& model, const int* v, int npe, Eigen::MatrixXd Ke) {
   rotate_to_dof_frames(model, v, npe, Ke);
   return Ke;
@@ -84,7 +87,7 @@ QuadraticProgram assemble_qp(Model& model, const std::vector<char>& elements) {
   QuadraticProgram qp;
   qp.f = Eigen::VectorXd::Zero(model.n_free);
   detail::assemble_stiffness(model, elements, qp.K, qp.f);
-  add_force_loads(model, qp.f);
+  detail::add_force_loads(model, qp.f);
   refuse_unrepresentable(model, qp);
   detail::add_contact_rows(model, qp);
   detail::add_friction_rows(model, qp);                  // nothing without friction
@@ -117,7 +120,7 @@ void apply_load_step(Model& model, QuadraticProgram& qp, const std::vector<doubl
   model.prescribed = prescribed;
   model.nodal_force = nodal_force;
   qp.f = detail::prescribed_forces(model);
-  add_force_loads(model, qp.f);
+  detail::add_force_loads(model, qp.f);
   detail::add_contact_rows(model, qp);  // the same B; g with this step's prescribed values
 }
 

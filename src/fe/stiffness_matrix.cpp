@@ -15,8 +15,6 @@
 
 namespace contactqp::detail {
 
-Eigen::MatrixXd dof_frame_rotated(const Model& model, const int* v, int npe, Eigen::MatrixXd Ke);
-
 namespace {
 
 // At most two threads (this machine's cores); one below this many elements per thread.

@@ -200,7 +200,7 @@ json steps_json(const RunReport& report, int dim) {
 
 std::string result_json(const RunReport& report) {
   const Model& model = *report.model;
-  const QuadraticProgram& qp = *report.qp;
+  const QuadraticProgram& qp = *report.qp;  // its friction block (a distributed run's has none)
   const Certificate& c = report.certificate;
   json out;
   out["status"] = to_string(report.result.status);
@@ -208,10 +208,10 @@ std::string result_json(const RunReport& report) {
   out["backend"] = report.no_contact ? "none" : to_string(report.options.backend);
   out["no_contact"] = report.no_contact;
   out["iterations"] = report.result.iterations;
-  out["dofs"] = qp.n_dofs();
-  out["constraints"] = qp.n_constraints();
-  out["nodes"] = model.mesh.n_nodes();
-  out["elements"] = model.mesh.n_elements();
+  out["dofs"] = report.size.dofs;
+  out["constraints"] = report.size.constraints;
+  out["nodes"] = report.size.nodes;
+  out["elements"] = report.size.elements;
   out["element_order"] = model.mesh.order;
   if (model.dim == 3) {
     out["dimension"] = 3;

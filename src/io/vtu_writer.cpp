@@ -86,28 +86,22 @@ void data_array(std::string& out, const char* type, const std::string& name, int
   out += "\n        </DataArray>\n";
 }
 
-void scalars(std::string& out, const std::string& name, const Eigen::VectorXd& values) {
-  data_array(out, "Float64", name, 1, values.data(), static_cast<std::size_t>(values.size()));
-}
-
 // A nodal vector field of dim components per node as 3 components (z = 0 in 2D), as
 // ParaView's vector filters expect.
-void vectors(std::string& out, const std::string& name, const Eigen::VectorXd& field, int dim) {
-  if (dim == 3) {
-    data_array(out, "Float64", name, 3, field.data(), static_cast<std::size_t>(field.size()));
-    return;
-  }
+PointArray vector_array(const std::string& name, const Eigen::VectorXd& field, int dim) {
+  PointArray array{name, 3, field.data(), {}};
+  if (dim == 3) return array;
   const Eigen::Index n = field.size() / dim;
-  std::vector<double> xyz(3 * n, 0.0);
+  array.storage.assign(3 * n, 0.0);
   for (Eigen::Index k = 0; k < n; ++k)
-    for (int c = 0; c < dim; ++c) xyz[3 * k + c] = field[dim * k + c];
-  data_array(out, "Float64", name, 3, xyz.data(), xyz.size());
+    for (int c = 0; c < dim; ++c) array.storage[3 * k + c] = field[dim * k + c];
+  array.values = array.storage.data();
+  return array;
 }
 
-// Pressure, contact force, gap and the contact-boundary mask at every node.
-struct ContactFields {
-  Eigen::VectorXd pressure, force, gap, mask;
-};
+PointArray scalar_array(const std::string& name, const Eigen::VectorXd& values) {
+  return PointArray{name, 1, values.data(), {}};
+}
 
 ContactFields contact_fields(const RunReport& report, const Eigen::VectorXd& displacement) {
   const Model& model = *report.model;
@@ -168,13 +162,7 @@ FrictionNodeFields friction_node_fields(const Model& model, const FrictionFields
 
 }  // namespace
 
-std::string vtu_document(const RunReport& report) {
-  const Model& model = *report.model;
-  const Mesh& mesh = model.mesh;
-  const Eigen::VectorXd displacement = full_displacement(model, report.result.u);
-  const NodalStress stress = nodal_stresses(model, displacement);
-  const ContactFields contact = contact_fields(report, displacement);
-
+std::string vtu_piece(const Mesh& mesh, const std::vector<PointArray>& arrays) {
   std::vector<double> points(3 * mesh.n_nodes(), 0.0);
   for (int k = 0; k < mesh.n_nodes(); ++k)
     for (int c = 0; c < 3; ++c) points[3 * k + c] = mesh.nodes[k][c];
@@ -182,12 +170,11 @@ std::string vtu_document(const RunReport& report) {
   std::vector<std::int64_t> connectivity(mesh.elements.begin(), mesh.elements.end()), offsets(mesh.n_elements());
   for (int e = 0; e < mesh.n_elements(); ++e) offsets[e] = static_cast<std::int64_t>(npe) * (e + 1);
   const std::vector<std::uint8_t> types(mesh.n_elements(), vtk_cell_type(mesh.type()));
-  const int dim = mesh.dim;
   const std::size_t n = static_cast<std::size_t>(mesh.n_nodes()), n_cells = static_cast<std::size_t>(mesh.n_elements());
   // The arrays' bytes (in base64, 4 characters per 3 bytes) and some for the markup: one allocation.
-  const std::size_t n_scalars = (dim == 3 ? 9 : 7) + (model.bodies.empty() ? 0 : 1);
-  const std::size_t array_bytes =
-      8 * (3 * n * 3 + n_scalars * n) + 8 * (connectivity.size() + offsets.size()) + n_cells;
+  std::size_t n_values = 3 * n;
+  for (const PointArray& array : arrays) n_values += array.components * n;
+  const std::size_t array_bytes = 8 * n_values + 8 * (connectivity.size() + offsets.size()) + n_cells;
   std::string out;
   out.reserve(4 * array_bytes / 3 + 4096);
   out += "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"";
@@ -195,33 +182,8 @@ std::string vtu_document(const RunReport& report) {
   out += "\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"" + std::to_string(n) +
          "\" NumberOfCells=\"" + std::to_string(n_cells) + "\">\n" +
          "      <PointData Scalars=\"von_mises\" Vectors=\"displacement\">\n";
-  vectors(out, "displacement", displacement, dim);
-  scalars(out, "sigma_xx", stress.xx);
-  scalars(out, "sigma_yy", stress.yy);
-  scalars(out, "sigma_xy", stress.xy);
-  scalars(out, "sigma_zz", stress.zz);
-  if (dim == 3) {
-    scalars(out, "sigma_yz", stress.yz);
-    scalars(out, "sigma_xz", stress.xz);
-  }
-  scalars(out, "von_mises", stress.von_mises);
-  scalars(out, "contact_pressure", contact.pressure);
-  vectors(out, "contact_force", contact.force, dim);
-  scalars(out, "gap", contact.gap);
-  scalars(out, "contact_boundary", contact.mask);
-  if (report.friction) {
-    const FrictionNodeFields friction = friction_node_fields(model, *report.friction);
-    vectors(out, "tangential_traction", friction.traction, dim);
-    vectors(out, "slip", friction.slip, dim);
-    scalars(out, "contact_state", friction.state);
-  }
-  // With several bodies, which body each node belongs to (0, 1, ... in the scene's order).
-  if (!model.bodies.empty()) {
-    Eigen::VectorXd body = Eigen::VectorXd::Zero(mesh.n_nodes());
-    for (size_t b = 0; b < model.bodies.size(); ++b)
-      body.segment(model.bodies[b].first_node, model.bodies[b].n_nodes).setConstant(static_cast<double>(b));
-    scalars(out, "body", body);
-  }
+  for (const PointArray& array : arrays)
+    data_array(out, "Float64", array.name, array.components, array.values, array.components * n);
   out += "      </PointData>\n      <Points>\n";
   data_array(out, "Float64", "Points", 3, points.data(), points.size());
   out += "      </Points>\n      <Cells>\n";
@@ -230,6 +192,74 @@ std::string vtu_document(const RunReport& report) {
   data_array(out, "UInt8", "types", 1, types.data(), types.size());
   out += "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
   return out;
+}
+
+std::string pvtu_document(const std::vector<PointArray>& arrays, const std::vector<std::string>& pieces) {
+  std::string out = "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"";
+  out += byte_order();
+  out += "\" header_type=\"UInt64\">\n  <PUnstructuredGrid GhostLevel=\"0\">\n";
+  out += "    <PPointData Scalars=\"von_mises\" Vectors=\"displacement\">\n";
+  for (const PointArray& array : arrays)
+    out += "      <PDataArray type=\"Float64\" Name=\"" + array.name + "\" NumberOfComponents=\"" +
+           std::to_string(array.components) + "\"/>\n";
+  out +=
+      "    </PPointData>\n    <PPoints>\n      <PDataArray type=\"Float64\" Name=\"Points\" "
+      "NumberOfComponents=\"3\"/>\n"
+      "    </PPoints>\n    <PCells>\n"
+      "      <PDataArray type=\"Int64\" Name=\"connectivity\" NumberOfComponents=\"1\"/>\n"
+      "      <PDataArray type=\"Int64\" Name=\"offsets\" NumberOfComponents=\"1\"/>\n"
+      "      <PDataArray type=\"UInt8\" Name=\"types\" NumberOfComponents=\"1\"/>\n    </PCells>\n";
+  for (const std::string& piece : pieces) out += "    <Piece Source=\"" + piece + "\"/>\n";
+  out += "  </PUnstructuredGrid>\n</VTKFile>\n";
+  return out;
+}
+
+std::vector<PointArray> solution_arrays(const Model& model, const Eigen::VectorXd& displacement,
+                                        const NodalStress& stress, const ContactFields& contact,
+                                        const Eigen::VectorXd* body) {
+  const int dim = model.dim;
+  std::vector<PointArray> arrays;
+  arrays.push_back(vector_array("displacement", displacement, dim));
+  arrays.push_back(scalar_array("sigma_xx", stress.xx));
+  arrays.push_back(scalar_array("sigma_yy", stress.yy));
+  arrays.push_back(scalar_array("sigma_xy", stress.xy));
+  arrays.push_back(scalar_array("sigma_zz", stress.zz));
+  if (dim == 3) {
+    arrays.push_back(scalar_array("sigma_yz", stress.yz));
+    arrays.push_back(scalar_array("sigma_xz", stress.xz));
+  }
+  arrays.push_back(scalar_array("von_mises", stress.von_mises));
+  arrays.push_back(scalar_array("contact_pressure", contact.pressure));
+  arrays.push_back(vector_array("contact_force", contact.force, dim));
+  arrays.push_back(scalar_array("gap", contact.gap));
+  arrays.push_back(scalar_array("contact_boundary", contact.mask));
+  if (body) arrays.push_back(scalar_array("body", *body));
+  return arrays;
+}
+
+std::string vtu_document(const RunReport& report) {
+  const Model& model = *report.model;
+  const Eigen::VectorXd displacement = full_displacement(model, report.result.u);
+  const NodalStress stress = nodal_stresses(model, displacement);
+  const ContactFields contact = contact_fields(report, displacement);
+  // With several bodies, which body each node belongs to (0, 1, ... in the scene's order).
+  Eigen::VectorXd body;
+  if (!model.bodies.empty()) {
+    body = Eigen::VectorXd::Zero(model.mesh.n_nodes());
+    for (size_t b = 0; b < model.bodies.size(); ++b)
+      body.segment(model.bodies[b].first_node, model.bodies[b].n_nodes).setConstant(static_cast<double>(b));
+  }
+  std::vector<PointArray> arrays = solution_arrays(model, displacement, stress, contact);
+  // With friction: the friction traction, this step's slip and the state (before "body").
+  FrictionNodeFields friction;
+  if (report.friction) {
+    friction = friction_node_fields(model, *report.friction);
+    arrays.push_back(vector_array("tangential_traction", friction.traction, model.dim));
+    arrays.push_back(vector_array("slip", friction.slip, model.dim));
+    arrays.push_back(scalar_array("contact_state", friction.state));
+  }
+  if (body.size()) arrays.push_back(scalar_array("body", body));
+  return vtu_piece(model.mesh, arrays);
 }
 
 }  // namespace contactqp

@@ -18,18 +18,25 @@ namespace contactqp::detail {
 // midpoint the first time its edge is asked for.
 class EdgeNodes {
  public:
-  EdgeNodes(Mesh& mesh, std::size_t expected) : mesh_(mesh) { index_.reserve(expected); }
+  // `parents`, when given, receives the two end nodes of each new node's edge (refine.hpp).
+  EdgeNodes(Mesh& mesh, std::size_t expected, NodeParents* parents = nullptr) : mesh_(mesh), parents_(parents) {
+    index_.reserve(expected);
+  }
 
   int operator()(int a, int b) {
     const std::uint64_t key =
         a < b ? (std::uint64_t(a) << 32 | std::uint32_t(b)) : (std::uint64_t(b) << 32 | std::uint32_t(a));
     auto [it, inserted] = index_.emplace(key, mesh_.n_nodes());
-    if (inserted) mesh_.nodes.push_back(0.5 * (mesh_.nodes[a] + mesh_.nodes[b]));
+    if (inserted) {
+      mesh_.nodes.push_back(0.5 * (mesh_.nodes[a] + mesh_.nodes[b]));
+      if (parents_) parents_->push_back({a, b});
+    }
     return it->second;
   }
 
  private:
   Mesh& mesh_;
+  NodeParents* parents_;
   std::unordered_map<std::uint64_t, int> index_;
 };
 
@@ -46,6 +53,6 @@ inline void snap_boundary_nodes(Mesh& mesh, const std::vector<std::pair<std::str
 // 20), snapped onto their boundary. Regions and points as they were. `expected_edges` sizes
 // the edge table.
 Mesh with_mid_edge_nodes(const Mesh& linear, const std::vector<std::array<int, 2>>& edges, std::size_t expected_edges,
-                         const SnapToBoundary& snap);
+                         const SnapToBoundary& snap, NodeParents* parents = nullptr);
 
 }  // namespace contactqp::detail

@@ -120,4 +120,19 @@ std::string gmsh_error_text() {
 
 Mesh mesh_from_gmsh(double scale) { return mesh_from_file_data(data_from_gmsh(), scale); }
 
+CoarseMesh coarse_from_gmsh(int refinements, int order, double radius, const SnapToBoundary& snap) {
+  CoarseMesh coarse;
+  coarse.refinements = refinements;
+  coarse.order = order;
+  if (refinements == 0) {
+    coarse.mesh = mesh_from_gmsh(radius);
+  } else {
+    coarse.snap = snap;
+    coarse.mesh = mesh_from_gmsh(1.0);
+    coarse.scale = radius;
+  }
+  coarse.mesh.regions.clear();  // the generated body has no named regions
+  return coarse;
+}
+
 }  // namespace contactqp::detail

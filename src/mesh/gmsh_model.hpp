@@ -5,6 +5,7 @@
 #include <mutex>
 
 #include "contactqp/mesh.hpp"
+#include "refine.hpp"
 
 namespace contactqp::detail {
 
@@ -38,6 +39,11 @@ class GmshSession {
 // mesh_file_data.hpp, on the model's contents: a .msh file read by msh_reader.cpp passes the
 // same checks.)
 Mesh mesh_from_gmsh(double scale = 1.0);
+
+// The generated shapes' coarse mesh from Gmsh's (refine.hpp): without refinements the body's
+// mesh itself, scaled by `radius` as it is read; with refinements read in units of the radius
+// (where `snap` knows the geometry) and scaled after refining. No named regions.
+CoarseMesh coarse_from_gmsh(int refinements, int order, double radius, const SnapToBoundary& snap);
 
 // Throws std::runtime_error with Gmsh's last error message, if Gmsh logged one in this session.
 void throw_if_gmsh_failed();

@@ -26,7 +26,16 @@ double estimate_half_disc_triangles(const HalfDiscMeshRequest& request) {
   return estimate_graded_triangles(unit_sizes(request), area, total_length(request.fine));
 }
 
-Mesh mesh_half_disc(const HalfDiscMeshRequest& request) {
+SnapToBoundary half_disc_snap() {
+  // Refined in units of R, where the arc is the unit circle about (0, 1), then scaled.
+  return [](const std::string& boundary, const Eigen::Vector3d& x) -> Eigen::Vector3d {
+    if (boundary != "arc") return x;
+    const Eigen::Vector3d centre(0.0, 1.0, 0.0);
+    return centre + (x - centre).normalized();
+  };
+}
+
+CoarseMesh coarse_half_disc(const HalfDiscMeshRequest& request) {
   GmshSession session;
   // Mesh the unit geometry and scale afterwards: the mesh of a scaled scene is then exactly
   // the scaled mesh (Gmsh's geometric tolerances are absolute).
@@ -82,21 +91,12 @@ Mesh mesh_half_disc(const HalfDiscMeshRequest& request) {
   gmsh::option::setNumber("Mesh.ElementOrder", request.refinements > 0 ? 1 : request.order);
   gmsh::model::mesh::generate(2);
   throw_if_gmsh_failed();
-  Mesh mesh;
-  if (request.refinements == 0) {
-    mesh = mesh_from_gmsh(request.radius);
-  } else {
-    // Refined in units of R, where the arc is the unit circle about (0, 1), then scaled.
-    const auto onto_arc = [](const std::string& boundary, const Eigen::Vector3d& x) -> Eigen::Vector3d {
-      if (boundary != "arc") return x;
-      const Eigen::Vector3d centre(0.0, 1.0, 0.0);
-      return centre + (x - centre).normalized();
-    };
-    mesh = refine_triangles(mesh_from_gmsh(1.0), request.refinements, request.order, onto_arc);
-    for (Eigen::Vector3d& x : mesh.nodes) x *= request.radius;
-  }
-  mesh.regions.clear();  // the generated body has no named regions
-  return mesh;
+  return coarse_from_gmsh(request.refinements, request.order, request.radius, half_disc_snap());
+}
+
+Mesh mesh_half_disc(const HalfDiscMeshRequest& request) {
+  const CoarseMesh coarse = coarse_half_disc(request);
+  return refine_coarse(coarse, coarse.mesh);
 }
 
 }  // namespace contactqp::detail

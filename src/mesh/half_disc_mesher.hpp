@@ -4,6 +4,7 @@
 
 #include "contactqp/mesh.hpp"
 #include "graded_size.hpp"
+#include "refine.hpp"
 
 namespace contactqp::detail {
 
@@ -26,6 +27,12 @@ struct HalfDiscMeshRequest {
 
 // Boundaries of the result: "arc", "top", and "symmetry" (x = 0) when symmetric.
 Mesh mesh_half_disc(const HalfDiscMeshRequest& request);
+
+// What Gmsh meshes for it, and how that is refined (refine.hpp): mesh_half_disc() is
+// refine_coarse() of it.
+CoarseMesh coarse_half_disc(const HalfDiscMeshRequest& request);
+// Its snap, in units of R: new nodes of "arc" back onto the unit circle about (0, 1).
+SnapToBoundary half_disc_snap();
 
 // The number of triangles the request will give, within a factor of about 1.5, computed
 // without meshing (so that an oversized request can be refused before it takes the memory).

@@ -52,7 +52,18 @@ double estimate_hemisphere_elements(const HemisphereMeshRequest& request) {
                                     [quarter, fine](double d) { return quarter * shell_area(fine + d); });
 }
 
-Mesh mesh_hemisphere(const HemisphereMeshRequest& request) {
+SnapToBoundary hemisphere_snap() {
+  // Refined in units of R, where the sphere is the unit one about (0, 0, 1), then scaled.
+  // Projecting about the centre keeps a node of the top (z = 1) or of a symmetry plane
+  // (x = 0, y = 0) on it: the centre lies on all three, so a rim node stays on both faces.
+  return [](const std::string& boundary, const Eigen::Vector3d& x) -> Eigen::Vector3d {
+    if (boundary != "surface") return x;
+    const Eigen::Vector3d centre(0.0, 0.0, 1.0);
+    return centre + (x - centre).normalized();
+  };
+}
+
+CoarseMesh coarse_hemisphere(const HemisphereMeshRequest& request) {
   GmshSession session;
   gmsh::model::add("hemisphere");
   namespace occ = gmsh::model::occ;
@@ -108,23 +119,12 @@ Mesh mesh_hemisphere(const HemisphereMeshRequest& request) {
   gmsh::option::setNumber("Mesh.ElementOrder", request.refinements > 0 ? 1 : request.order);
   gmsh::model::mesh::generate(3);
   throw_if_gmsh_failed();
-  Mesh mesh;
-  if (request.refinements == 0) {
-    mesh = mesh_from_gmsh(request.radius);
-  } else {
-    // Refined in units of R, where the sphere is the unit one about (0, 0, 1), then scaled.
-    // Projecting about the centre keeps a node of the top (z = 1) or of a symmetry plane
-    // (x = 0, y = 0) on it: the centre lies on all three, so a rim node stays on both faces.
-    const auto onto_sphere = [](const std::string& boundary, const Eigen::Vector3d& x) -> Eigen::Vector3d {
-      if (boundary != "surface") return x;
-      const Eigen::Vector3d centre(0.0, 0.0, 1.0);
-      return centre + (x - centre).normalized();
-    };
-    mesh = refine_tetrahedra(mesh_from_gmsh(1.0), request.refinements, request.order, onto_sphere);
-    for (Eigen::Vector3d& x : mesh.nodes) x *= request.radius;
-  }
-  mesh.regions.clear();  // the generated body has no named regions
-  return mesh;
+  return coarse_from_gmsh(request.refinements, request.order, request.radius, hemisphere_snap());
+}
+
+Mesh mesh_hemisphere(const HemisphereMeshRequest& request) {
+  const CoarseMesh coarse = coarse_hemisphere(request);
+  return refine_coarse(coarse, coarse.mesh);
 }
 
 }  // namespace contactqp::detail

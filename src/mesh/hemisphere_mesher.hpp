@@ -4,6 +4,7 @@
 
 #include "contactqp/mesh.hpp"
 #include "graded_size.hpp"
+#include "refine.hpp"
 
 namespace contactqp::detail {
 
@@ -39,6 +40,12 @@ struct HemisphereMeshRequest {
 // Every node of "surface", mid-edge nodes too, lies on the sphere. Throws std::runtime_error
 // when Gmsh fails.
 Mesh mesh_hemisphere(const HemisphereMeshRequest& request);
+
+// What Gmsh meshes for it, and how that is refined (refine.hpp): mesh_hemisphere() is
+// refine_coarse() of it.
+CoarseMesh coarse_hemisphere(const HemisphereMeshRequest& request);
+// Its snap, in units of R: new nodes of "surface" back onto the unit sphere about (0, 0, 1).
+SnapToBoundary hemisphere_snap();
 
 // The number of tetrahedra the request will give (refined ones too), within a factor of about 2, computed
 // without meshing (so that an oversized request can be refused before it takes the memory).

@@ -4,7 +4,7 @@
 namespace contactqp::detail {
 
 Mesh with_mid_edge_nodes(const Mesh& linear, const std::vector<std::array<int, 2>>& edges, std::size_t expected_edges,
-                         const SnapToBoundary& snap) {
+                         const SnapToBoundary& snap, NodeParents* parents) {
   Mesh quadratic;
   quadratic.dim = linear.dim;
   quadratic.order = 2;
@@ -12,7 +12,7 @@ Mesh with_mid_edge_nodes(const Mesh& linear, const std::vector<std::array<int, 2
   const int n_elements = linear.n_elements(), n_vertices = linear.nodes_per_element();
   quadratic.nodes.reserve(linear.nodes.size() + expected_edges);
   quadratic.elements.reserve((n_vertices + edges.size()) * static_cast<std::size_t>(n_elements));
-  EdgeNodes mid(quadratic, expected_edges);
+  EdgeNodes mid(quadratic, expected_edges, parents);
   for (int e = 0; e < n_elements; ++e) {
     const int* v = linear.element(e);
     quadratic.elements.insert(quadratic.elements.end(), v, v + n_vertices);

@@ -7,7 +7,7 @@
 namespace contactqp::detail {
 namespace {
 
-Mesh split_once(const Mesh& coarse, const SnapToBoundary& snap) {
+Mesh split_once(const Mesh& coarse, const SnapToBoundary& snap, NodeParents* parents) {
   Mesh fine;
   fine.dim = 2;
   fine.order = 1;
@@ -15,7 +15,7 @@ Mesh split_once(const Mesh& coarse, const SnapToBoundary& snap) {
   const int n_elements = coarse.n_elements();
   fine.nodes.reserve(coarse.nodes.size() + 3 * static_cast<std::size_t>(n_elements) / 2 + 64);
   fine.elements.reserve(12 * static_cast<std::size_t>(n_elements));
-  EdgeNodes mid(fine, 3 * static_cast<std::size_t>(n_elements) / 2 + 64);
+  EdgeNodes mid(fine, 3 * static_cast<std::size_t>(n_elements) / 2 + 64, parents);
   for (int e = 0; e < n_elements; ++e) {
     const int* v = coarse.element(e);
     const int m01 = mid(v[0], v[1]), m12 = mid(v[1], v[2]), m20 = mid(v[2], v[0]);
@@ -51,15 +51,25 @@ Mesh split_once(const Mesh& coarse, const SnapToBoundary& snap) {
 
 }  // namespace
 
-Mesh refine_triangles(const Mesh& mesh, int times, int order, const SnapToBoundary& snap) {
+Mesh refine_triangles(const Mesh& mesh, int times, int order, const SnapToBoundary& snap, NodeParents* parents) {
   if (mesh.dim != 2 || mesh.order != 1) throw std::runtime_error("refine_triangles: needs a mesh of 3-node triangles");
   Mesh refined = mesh;
-  for (int k = 0; k < times; ++k) refined = split_once(refined, snap);
+  for (int k = 0; k < times; ++k) refined = split_once(refined, snap, parents);
   // 6-node triangles: vertices, then the mid-sides 01, 12, 20.
   if (order == 2)
     refined = with_mid_edge_nodes(refined, {{0, 1}, {1, 2}, {2, 0}},
-                                  3 * static_cast<std::size_t>(refined.n_elements()) / 2 + 64, snap);
+                                  3 * static_cast<std::size_t>(refined.n_elements()) / 2 + 64, snap, parents);
   orient(refined);  // checks every element too: a snapped node must not invert one
+  return refined;
+}
+
+long long refined_children(int dim, int refinements) { return 1LL << (dim * refinements); }
+
+Mesh refine_coarse(const CoarseMesh& coarse, const Mesh& part, NodeParents* parents) {
+  if (coarse.refinements == 0) return part;
+  Mesh refined = part.dim == 2 ? refine_triangles(part, coarse.refinements, coarse.order, coarse.snap, parents)
+                               : refine_tetrahedra(part, coarse.refinements, coarse.order, coarse.snap, parents);
+  for (Eigen::Vector3d& x : refined.nodes) x *= coarse.scale;
   return refined;
 }
 

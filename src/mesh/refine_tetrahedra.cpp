@@ -36,7 +36,7 @@ void list_face_nodes(const std::string& name, const BoundaryFace& face, EdgeNode
   }
 }
 
-Mesh split_once(const Mesh& coarse, const SnapToBoundary& snap) {
+Mesh split_once(const Mesh& coarse, const SnapToBoundary& snap, NodeParents* parents) {
   Mesh fine;
   fine.dim = 3;
   fine.order = 1;
@@ -44,7 +44,7 @@ Mesh split_once(const Mesh& coarse, const SnapToBoundary& snap) {
   const int n_elements = coarse.n_elements();
   fine.nodes.reserve(coarse.nodes.size() + expected_edges(n_elements));
   fine.elements.reserve(32 * static_cast<std::size_t>(n_elements));
-  EdgeNodes mid(fine, expected_edges(n_elements));
+  EdgeNodes mid(fine, expected_edges(n_elements), parents);
   int n[10];
   for (int e = 0; e < n_elements; ++e) {
     const int* v = coarse.element(e);
@@ -95,15 +95,15 @@ Mesh split_once(const Mesh& coarse, const SnapToBoundary& snap) {
 
 }  // namespace
 
-Mesh refine_tetrahedra(const Mesh& mesh, int times, int order, const SnapToBoundary& snap) {
+Mesh refine_tetrahedra(const Mesh& mesh, int times, int order, const SnapToBoundary& snap, NodeParents* parents) {
   if (mesh.dim != 3 || mesh.order != 1)
     throw std::runtime_error("refine_tetrahedra: needs a mesh of 4-node tetrahedra");
   Mesh refined = mesh;
-  for (int k = 0; k < times; ++k) refined = split_once(refined, snap);
+  for (int k = 0; k < times; ++k) refined = split_once(refined, snap, parents);
   if (order == 2) {
     std::vector<std::array<int, 2>> edges;
     for (const auto& edge : kEdges) edges.push_back({edge[0], edge[1]});
-    refined = with_mid_edge_nodes(refined, edges, expected_edges(refined.n_elements()), snap);
+    refined = with_mid_edge_nodes(refined, edges, expected_edges(refined.n_elements()), snap, parents);
   }
   orient(refined);  // checks every element too: a snapped node must not invert one
   return refined;

@@ -54,7 +54,7 @@ double largest_push(const std::vector<LoadSpec>& loads) {
 
 // The candidate distance for pairs and obstacles without their own max_gap: two bodies close
 // by at most the sum of their pushes, so 1.5 × that sum; with a force load every facing node.
-void choose_max_gap(const Scene& scene, Model& model) {
+void choose_bodies_max_gap(const Scene& scene, Model& model) {
   double sum = 0;
   for (const SceneBody& body : scene.bodies) {
     const double push = largest_push(body.loads);
@@ -194,7 +194,7 @@ Model build_bodies_model(const Scene& scene, const BuildOptions& options) {
   const int dim = scene.dim();
   model.dim = dim;
   model.mesh.dim = dim;
-  choose_max_gap(scene, model);
+  choose_bodies_max_gap(scene, model);
   model.scene = scene;
   model.scene.loads.clear();
   Stopwatch clock;

@@ -75,7 +75,7 @@ void refuse_oversized(double estimate, const BuildOptions& options, const std::s
 
 // Gmsh errors while meshing a generated shape are bad input too (sizes it cannot honour).
 template <class Mesher>
-Mesh generate(const Mesher& mesher) {
+auto generate(const Mesher& mesher) -> decltype(mesher()) {
   try {
     return mesher();
   } catch (const std::exception& error) {
@@ -95,7 +95,7 @@ void copy_mesh_spec(const BodySpec& body, Request& request) {
   request.order = body.mesh.order;
 }
 
-Mesh mesh_half_disc_body(const Scene& scene, double max_gap, const BuildOptions& options) {
+CoarseMesh coarse_half_disc_body(const Scene& scene, double max_gap, const BuildOptions& options) {
   const BodySpec& body = scene.body;
   HalfDiscMeshRequest request;
   request.radius = body.radius;
@@ -108,7 +108,7 @@ Mesh mesh_half_disc_body(const Scene& scene, double max_gap, const BuildOptions&
             body.symmetry ? 0.0 : -kPi / 2, kPi / 2};
   request.fine = fine_intervals(arc, scene.obstacles, max_gap, body.mesh.contact_size / R);
   refuse_oversized(estimate_half_disc_triangles(request), options);
-  return generate([&] { return mesh_half_disc(request); });
+  return generate([&] { return coarse_half_disc(request); });
 }
 
 Mesh mesh_rectangle_body(const Scene& scene, double max_gap, const BuildOptions& options) {
@@ -152,7 +152,7 @@ double fine_radius(const std::function<Eigen::Vector3d(double, double)>& surface
   return std::min(r_max, reach + widen);
 }
 
-Mesh mesh_hemisphere_body(const Scene& scene, double max_gap, const BuildOptions& options) {
+CoarseMesh coarse_hemisphere_body(const Scene& scene, double max_gap, const BuildOptions& options) {
   const BodySpec& body = scene.body;
   HemisphereMeshRequest request;
   request.radius = body.radius;
@@ -170,7 +170,7 @@ Mesh mesh_hemisphere_body(const Scene& scene, double max_gap, const BuildOptions
   };
   request.fine_radius = fine_radius(surface, outward, R, scene.obstacles, max_gap, body.mesh.contact_size);
   refuse_oversized(estimate_hemisphere_elements(request), options, "tetrahedra");
-  return generate([&] { return mesh_hemisphere(request); });
+  return generate([&] { return coarse_hemisphere(request); });
 }
 
 Mesh mesh_box_body(const Scene& scene, double max_gap, const BuildOptions& options) {
@@ -204,19 +204,21 @@ Mesh mesh_box_body(const Scene& scene, double max_gap, const BuildOptions& optio
 
 }  // namespace
 
-Mesh mesh_body(const Scene& scene, double max_gap, const BuildOptions& options) {
-  Mesh mesh;
+CoarseMesh coarse_body_mesh(const Scene& scene, double max_gap, const BuildOptions& options) {
+  CoarseMesh coarse;
   if (scene.body.shape == "half_disc")
-    mesh = mesh_half_disc_body(scene, max_gap, options);
+    coarse = coarse_half_disc_body(scene, max_gap, options);
   else if (scene.body.shape == "rectangle")
-    mesh = mesh_rectangle_body(scene, max_gap, options);
+    coarse.mesh = mesh_rectangle_body(scene, max_gap, options);
   else if (scene.body.shape == "hemisphere")
-    mesh = mesh_hemisphere_body(scene, max_gap, options);
+    coarse = coarse_hemisphere_body(scene, max_gap, options);
   else if (scene.body.shape == "box")
-    mesh = mesh_box_body(scene, max_gap, options);
+    coarse.mesh = mesh_box_body(scene, max_gap, options);
   else
-    mesh = read_gmsh_file({scene.body.file, scene.body.mesh.order, scene.body.mesh.size_factor});
-  if (scene.body.formulation == Formulation::Mixed && mesh.order != 2)
+    coarse.mesh = read_gmsh_file({scene.body.file, scene.body.mesh.order, scene.body.mesh.size_factor});
+  if (coarse.refinements == 0) coarse.order = coarse.mesh.order;
+  const Mesh& mesh = coarse.mesh;
+  if (scene.body.formulation == Formulation::Mixed && coarse.order != 2)
     throw InputError("body.formulation", "= \"mixed\": needs 6-node triangles, and " + scene.body.file +
                                              " holds 3-node ones (mesh it with gmsh -order 2)");
   if (mesh.dim != scene.dim())
@@ -225,11 +227,32 @@ Mesh mesh_body(const Scene& scene, double max_gap, const BuildOptions& options) 
                          " elements), but \"model\": \"" + to_string(scene.model) + "\" is " +
                          std::to_string(scene.dim()) + "D" +
                          (mesh.dim == 3 ? "; use \"model\": \"solid\"" : "; use plane_strain or plane_stress"));
-  if (mesh.n_elements() > options.max_elements)
-    throw InputError("body.mesh", "has " + std::to_string(mesh.n_elements()) +
-                                      (mesh.dim == 2 ? " triangles" : " tetrahedra") + ", more than the limit of " +
-                                      std::to_string(options.max_elements) + "; raise --max-elements");
-  return mesh;
+  const long long n_elements = mesh.n_elements() * refined_children(mesh.dim, coarse.refinements);
+  if (n_elements > options.max_elements)
+    throw InputError("body.mesh", "has " + std::to_string(n_elements) + (mesh.dim == 2 ? " triangles" : " tetrahedra") +
+                                      ", more than the limit of " + std::to_string(options.max_elements) +
+                                      "; raise --max-elements");
+  return coarse;
+}
+
+CoarseMesh body_refinement(const Scene& scene) {
+  CoarseMesh how;
+  const BodySpec& body = scene.body;
+  if (body.mesh.refinements == 0 || (body.shape != "half_disc" && body.shape != "hemisphere")) return how;
+  how.refinements = body.mesh.refinements;
+  how.order = body.mesh.order;
+  how.snap = body.shape == "half_disc" ? half_disc_snap() : hemisphere_snap();
+  how.scale = body.radius;
+  return how;
+}
+
+Mesh refine_body_mesh(const CoarseMesh& coarse, const Mesh& part, NodeParents* parents) {
+  return generate([&] { return refine_coarse(coarse, part, parents); });
+}
+
+Mesh mesh_body(const Scene& scene, double max_gap, const BuildOptions& options) {
+  const CoarseMesh coarse = coarse_body_mesh(scene, max_gap, options);
+  return refine_body_mesh(coarse, coarse.mesh);
 }
 
 }  // namespace contactqp::detail

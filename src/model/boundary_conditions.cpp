@@ -22,6 +22,12 @@ void prescribe(Model& model, int dof, double value, const std::string& field) {
 }  // namespace
 
 void apply_displacement_conditions(Model& model, const Scene& scene, const Eigen::Matrix3d& rotation) {
+  apply_displacement_conditions(model, scene, rotation,
+                                [&model](const std::string& name) { return boundary_nodes(model.mesh, name); });
+}
+
+void apply_displacement_conditions(Model& model, const Scene& scene, const Eigen::Matrix3d& rotation,
+                                   const NodesOfBoundary& nodes_of) {
   const int n_nodes = model.mesh.n_nodes();
   const int dim = model.mesh.dim;
   model.dim = dim;
@@ -30,13 +36,12 @@ void apply_displacement_conditions(Model& model, const Scene& scene, const Eigen
   for (const LoadSpec& load : scene.loads) {
     const DisplacementLoad* d = load.as<DisplacementLoad>();
     if (!d) continue;
-    for (int node : boundary_nodes(model.mesh, d->boundary))
+    for (int node : nodes_of(d->boundary))
       for (int c = 0; c < dim; ++c)
         if (d->value[c]) prescribe(model, dim * node + c, *d->value[c], load.path + ".value");
   }
   for (const std::string& plane : symmetry_boundaries(scene.body, dim))
-    for (int node : boundary_nodes(model.mesh, plane))
-      prescribe(model, dim * node + symmetry_component(plane), 0.0, "body.symmetry");
+    for (int node : nodes_of(plane)) prescribe(model, dim * node + symmetry_component(plane), 0.0, "body.symmetry");
   model.n_free = 0;
   for (int& index : model.free_index) index = index == 0 ? model.n_free++ : -1;
 

@@ -22,33 +22,9 @@ constexpr double kLoadGapFactor = 1.5;
 constexpr double kLinearLockingNu = 0.45;
 constexpr double kQuadraticLockingNu = 0.49;
 
-// The candidate distance: the scene's, or one that follows from the loads. A force load
-// gives no displacement scale before the solve (and K may be singular without contact), so
-// then every facing node of the contact boundary is a candidate.
-void choose_max_gap(const Scene& scene, Model& model) {
-  if (scene.contact.max_gap) {
-    model.max_gap = *scene.contact.max_gap;
-    model.max_gap_rule = "contact.max_gap";
-    return;
-  }
-  double largest = -1;
-  bool forces = false;
-  for (const LoadSpec& load : scene.loads) {
-    forces = forces || load.is_force();
-    const DisplacementLoad* d = load.as<DisplacementLoad>();
-    if (!d) continue;
-    const double ux = d->value[0].value_or(0.0), uy = d->value[1].value_or(0.0), uz = d->value[2].value_or(0.0);
-    largest = std::max(largest, uz == 0.0 ? std::hypot(ux, uy) : std::hypot(ux, uy, uz));
-  }
-  if (largest >= 0 && !forces) {
-    model.max_gap = kLoadGapFactor * largest;
-    model.max_gap_rule = "1.5 × the largest prescribed displacement";
-  } else {
-    model.max_gap = std::numeric_limits<double>::infinity();
-    model.max_gap_rule = forces ? "every boundary node facing an obstacle (the loads include forces)"
-                                : "every boundary node facing an obstacle";
-  }
-}
+}  // namespace
+
+namespace detail {
 
 // Displacement-based triangles lock as ν → 0.5 in plane strain: the element cannot change
 // shape without changing volume, so the body comes out too stiff. Say so, and what helps.
@@ -87,7 +63,35 @@ void rotate_mesh(Mesh& mesh, const Eigen::Matrix3d& rotation) {
   for (Eigen::Vector3d& x : mesh.nodes) x = rotation * x;
 }
 
-}  // namespace
+// The candidate distance: the scene's, or one that follows from the loads. A force load
+// gives no displacement scale before the solve (and K may be singular without contact), so
+// then every facing node of the contact boundary is a candidate.
+void choose_max_gap(const Scene& scene, Model& model) {
+  if (scene.contact.max_gap) {
+    model.max_gap = *scene.contact.max_gap;
+    model.max_gap_rule = "contact.max_gap";
+    return;
+  }
+  double largest = -1;
+  bool forces = false;
+  for (const LoadSpec& load : scene.loads) {
+    forces = forces || load.is_force();
+    const DisplacementLoad* d = load.as<DisplacementLoad>();
+    if (!d) continue;
+    const double ux = d->value[0].value_or(0.0), uy = d->value[1].value_or(0.0), uz = d->value[2].value_or(0.0);
+    largest = std::max(largest, uz == 0.0 ? std::hypot(ux, uy) : std::hypot(ux, uy, uz));
+  }
+  if (largest >= 0 && !forces) {
+    model.max_gap = kLoadGapFactor * largest;
+    model.max_gap_rule = "1.5 × the largest prescribed displacement";
+  } else {
+    model.max_gap = std::numeric_limits<double>::infinity();
+    model.max_gap_rule = forces ? "every boundary node facing an obstacle (the loads include forces)"
+                                : "every boundary node facing an obstacle";
+  }
+}
+
+}  // namespace detail
 
 Eigen::MatrixXd dof_frame(const Model& model, int node) {
   if (model.frame_of_node.empty() || model.frame_of_node[node] < 0)
@@ -97,14 +101,14 @@ Eigen::MatrixXd dof_frame(const Model& model, int node) {
 
 Mesh scene_mesh(const Scene& scene, const BuildOptions& options) {
   Model model;
-  choose_max_gap(scene, model);  // the fine zone of a generated shape depends on it
+  detail::choose_max_gap(scene, model);  // the fine zone of a generated shape depends on it
   return detail::mesh_body(scene, model.max_gap, options);
 }
 
 Model build_model(const Scene& scene, const BuildOptions& options) {
   if (!scene.bodies.empty()) return detail::build_bodies_model(scene, options);
   Model model;
-  choose_max_gap(scene, model);
+  detail::choose_max_gap(scene, model);
 
   // Everything that decides the discrete problem's structure — mesh, prescribed DOFs,
   // candidates, point-load nodes — is decided in the scene's own frame, so that a rotated
@@ -128,12 +132,12 @@ Model build_model(const Scene& scene, const BuildOptions& options) {
   // scene's axes through DOF frames.
   model.rotation = scene.transform.rotation();
   model.scene = rotated(scene);
-  rotate_mesh(model.mesh, model.rotation);
+  detail::rotate_mesh(model.mesh, model.rotation);
   detail::apply_displacement_conditions(model, scene, model.rotation);
   model.nodal_force = detail::nodal_forces(model.scene, model.mesh, point_nodes);
   if (!scene.steps.empty()) model.load_shares = detail::load_shares(model, point_nodes);
 
-  warn_near_incompressible(scene, model.mesh, model.warnings);
+  detail::warn_near_incompressible(scene, model.mesh, model.warnings);
   model.timings.add("model", clock.seconds());
   return model;
 }

@@ -1,14 +1,34 @@
 // The steps of build_model (model.cpp composes them), each in its own file.
 #pragma once
 
+#include <functional>
+
 #include "contactqp/model.hpp"
+#include "mesh/refine.hpp"
 
 namespace contactqp::detail {
+
+// model.cpp: the candidate distance (model.max_gap, max_gap_rule): the scene's, or one that
+// follows from the loads.
+void choose_max_gap(const Scene& scene, Model& model);
+// model.cpp: a warning when the elements lock for this Poisson's ratio; the mesh turned by the
+// scene's transform.
+void warn_near_incompressible(const Scene& scene, const Mesh& mesh, std::vector<std::string>& warnings);
+void rotate_mesh(Mesh& mesh, const Eigen::Matrix3d& rotation);
 
 // body_mesh.cpp: the body's mesh in the scene's own frame — a generated shape refined where
 // contact can happen (initial gap ≤ max_gap), or a Gmsh file. InputError when it would
 // exceed options.max_elements or cannot be made.
 Mesh mesh_body(const Scene& scene, double max_gap, const BuildOptions& options);
+
+// The same in two steps, for a distributed run (src/distributed/): what Gmsh meshes, checked
+// as the body's mesh will be (its order, dimension, refined element count), and the body's
+// mesh from it or from a part of it (InputError("body.mesh", ...) when refining fails).
+CoarseMesh coarse_body_mesh(const Scene& scene, double max_gap, const BuildOptions& options);
+Mesh refine_body_mesh(const CoarseMesh& coarse, const Mesh& part, NodeParents* parents = nullptr);
+// How the scene's coarse mesh is refined (its mesh left empty), known without meshing: what
+// the ranks that do not mesh need to refine their parts alike.
+CoarseMesh body_refinement(const Scene& scene);
 
 // bodies_model.cpp: build_model() for a scene with several bodies (scene.bodies).
 Model build_bodies_model(const Scene& scene, const BuildOptions& options);
@@ -21,6 +41,11 @@ void check_mesh_names(const Scene& scene, const Mesh& mesh);
 // and the symmetry plane. `rotation` is the scene's transform: with a rotation, prescribed
 // components stay along the scene's own axes.
 void apply_displacement_conditions(Model& model, const Scene& local_scene, const Eigen::Matrix3d& rotation);
+// The same with the nodes of a boundary given by `nodes_of` (a distributed mesh's part knows a
+// node is on a boundary even where the face that puts it there is another rank's).
+using NodesOfBoundary = std::function<std::vector<int>(const std::string& boundary)>;
+void apply_displacement_conditions(Model& model, const Scene& local_scene, const Eigen::Matrix3d& rotation,
+                                   const NodesOfBoundary& nodes_of);
 
 // rigid_motions.cpp: InputError naming the free motions (translations, rotations about a
 // point in 2D or an axis in 3D) and what would hold them, unless the prescribed DOFs (in their DOF frames)

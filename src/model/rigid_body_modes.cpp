@@ -8,6 +8,19 @@
 
 namespace contactqp::detail {
 
+Eigen::MatrixXd rigid_motions_at(int dim, const Eigen::Vector3d& position, const Eigen::Vector3d& centroid,
+                                 double extent) {
+  const Eigen::Vector3d x = (position - centroid) / extent;
+  Eigen::MatrixXd global(dim, dim == 2 ? 3 : 6);
+  if (dim == 2) {
+    global << 1, 0, -x.y(), 0, 1, x.x();
+  } else {
+    // Translations, then rotations about x, y, z: ω × x.
+    global << 1, 0, 0, 0, x.z(), -x.y(), 0, 1, 0, -x.z(), 0, x.x(), 0, 0, 1, x.y(), -x.x(), 0;
+  }
+  return global;
+}
+
 RigidBodyMotions::RigidBodyMotions(const Model& model) : model_(model) {
   const Mesh& mesh = model.mesh;
   const int n_nodes = mesh.n_nodes();
@@ -19,17 +32,9 @@ RigidBodyMotions::RigidBodyMotions(const Model& model) : model_(model) {
 }
 
 Eigen::MatrixXd RigidBodyMotions::at(int node) const {
-  const int dim = model_.dim;
-  const Eigen::Vector3d x = (model_.mesh.nodes[node] - centroid_) / extent_;
-  Eigen::MatrixXd global(dim, n_modes());  // the motions at the node, global axes
-  if (dim == 2) {
-    global << 1, 0, -x.y(), 0, 1, x.x();
-  } else {
-    // Translations, then rotations about x, y, z: ω × x.
-    global << 1, 0, 0, 0, x.z(), -x.y(), 0, 1, 0, -x.z(), 0, x.x(), 0, 0, 1, x.y(), -x.x(), 0;
-  }
   // Component c of a node's DOFs is along column c of its frame T: the value is (Tᵀ m)_c.
-  return dof_frame(model_, node).transpose() * global;
+  return dof_frame(model_, node).transpose() *
+         rigid_motions_at(model_.dim, model_.mesh.nodes[node], centroid_, extent_);
 }
 
 Eigen::MatrixXd rigid_body_modes(const Model& model) {

@@ -14,6 +14,11 @@ namespace contactqp::detail {
 // in 3D: translations along x, y, z and the rotations e_k × (x − x_c)/ℓ about the three axes.
 Eigen::MatrixXd rigid_body_modes(const Model& model);
 
+// The modes' values at one point, dim × (3 or 6), global axes: the rows of rigid_body_modes()
+// before the DOF frames, for the given centroid and extent.
+Eigen::MatrixXd rigid_motions_at(int dim, const Eigen::Vector3d& position, const Eigen::Vector3d& centroid,
+                                 double extent);
+
 // The same motions at every node and component: the row of node n's component c is
 // dim·n + c (in its DOF frame), prescribed components included.
 class RigidBodyMotions {

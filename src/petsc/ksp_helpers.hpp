@@ -1,6 +1,6 @@
 // Small pieces the room's KSP solvers share (petsc_solver.cpp, petsc_bound_qp.cpp,
-// bound_pdas.cpp): their stopping rule, the words of a failed solve, and a distributed vector
-// back on every rank.
+// bound_pdas.cpp, src/distributed/): their stopping rule, the words of a failed solve, a
+// matrix's bytes, and a distributed vector back on every rank.
 #pragma once
 
 #include <petscksp.h>
@@ -34,6 +34,15 @@ inline PetscErrorCode inner_stopping_rule(KSP ksp, PetscReal rnorm, double targe
   }
   if (rnorm <= target) *reason = KSP_CONVERGED_ATOL;
   return 0;
+}
+
+// The bytes of an AIJ matrix's rows on this rank: a value and a column index per entry, a row
+// pointer per row.
+inline double matrix_bytes(Mat M) {
+  MatInfo info;
+  PetscInt rows = 0, columns = 0;
+  if (MatGetInfo(M, MAT_LOCAL, &info) || MatGetLocalSize(M, &rows, &columns)) return 0;
+  return info.nz_allocated * (sizeof(PetscScalar) + sizeof(PetscInt)) + (rows + 1.0) * sizeof(PetscInt);
 }
 
 // A number in a message, to four significant digits ("2.9e-11", not to_string's "0.000000").

@@ -167,15 +167,6 @@ bool any_rank_failed(std::string& message) {
   return true;
 }
 
-// The bytes of an AIJ matrix's rows on this rank: a value and a column index per entry, a row
-// pointer per row.
-double matrix_bytes(Mat M) {
-  MatInfo info;
-  PetscInt rows = 0, columns = 0;
-  if (MatGetInfo(M, MAT_LOCAL, &info) || MatGetLocalSize(M, &rows, &columns)) return 0;
-  return info.nz_allocated * (sizeof(PetscScalar) + sizeof(PetscInt)) + (rows + 1.0) * sizeof(PetscInt);
-}
-
 // A, its working copy W and the multigrid hierarchy on this rank: the coarse operators and the
 // interpolations (GAMG's restriction is the transpose of the same matrix); the coarsest
 // level's LU is a few hundred rows and left out. Other preconditioners: A and W only.

@@ -87,11 +87,11 @@ void measure_3d(const Model& model, ObstacleContact& contact, const std::vector<
   contact.contact_radius = std::sqrt(2.5 * second_moment / sum);
 }
 
+}  // namespace
+
 // Boundary nodes that were not candidates must not have entered an obstacle.
 void check_non_candidates(const Model& model, const Eigen::VectorXd& u, ContactSummary& summary) {
   const Eigen::VectorXd displacement = full_displacement(model, u);
-  std::map<std::pair<int, int>, bool> is_candidate;
-  for (const Candidate& candidate : model.candidates) is_candidate[{candidate.node, candidate.obstacle}] = true;
   const double tolerance = 1e-6 * std::max(displacement.size() ? displacement.cwiseAbs().maxCoeff() : 0.0, 1e-300);
   const int dim = model.dim;
   std::vector<int> nodes;
@@ -110,6 +110,14 @@ void check_non_candidates(const Model& model, const Eigen::VectorXd& u, ContactS
           nodes.push_back(face.nodes[k]);
         }
   }
+  count_penetrating(model, displacement, nodes, tolerance, summary);
+}
+
+void count_penetrating(const Model& model, const Eigen::VectorXd& displacement, const std::vector<int>& nodes,
+                       double tolerance, ContactSummary& summary) {
+  std::map<std::pair<int, int>, bool> is_candidate;
+  for (const Candidate& candidate : model.candidates) is_candidate[{candidate.node, candidate.obstacle}] = true;
+  const int dim = model.dim;
   for (int node : nodes) {
     Eigen::Vector3d moved = model.mesh.nodes[node];
     moved.head(dim) += displacement.segment(dim * node, dim);
@@ -124,10 +132,14 @@ void check_non_candidates(const Model& model, const Eigen::VectorXd& u, ContactS
   }
 }
 
-}  // namespace
-
 ContactSummary summarize_contact(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
                                  const Eigen::VectorXd& lambda) {
+  ContactSummary summary = summarize_contact_rows(model, qp, lambda);
+  check_non_candidates(model, u, summary);
+  return summary;
+}
+
+ContactSummary summarize_contact_rows(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& lambda) {
   ContactSummary summary;
   const bool solid = model.dim == 3;
   const double thickness = solid ? 1.0 : model.scene.body.thickness;
@@ -194,7 +206,6 @@ ContactSummary summarize_contact(const Model& model, const QuadraticProgram& qp,
     summary.contact_radius_last_node = main.contact_radius_last_node;
     summary.contact_area = main.contact_area;
   }
-  check_non_candidates(model, u, summary);
   return summary;
 }
 

@@ -8,6 +8,15 @@ namespace contactqp {
 
 std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
                                 const Eigen::VectorXd& lambda, const Eigen::VectorXd& lambda_t) {
+  // λ: one row per candidate, in candidate order; λ_T through the QP's friction block.
+  const Eigen::VectorXd friction = lambda_t.size() > 0 ? friction_nodal_forces(model, qp, lambda_t) : Eigen::VectorXd();
+  return reactions(
+      model, u, lambda, [&model](const std::string& name) { return boundary_nodes(model.mesh, name); }, friction);
+}
+
+std::vector<Reaction> reactions(const Model& model, const Eigen::VectorXd& u, const Eigen::VectorXd& lambda,
+                                const std::function<std::vector<int>(const std::string&)>& nodes_of,
+                                const Eigen::VectorXd& friction_forces) {
   const Mesh& mesh = model.mesh;
   // Only the nodes of prescribed boundaries need their residual, so only the elements at them
   // are visited, in element order: each node's sum is the one a loop over all elements makes.
@@ -15,7 +24,7 @@ std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, 
   bool any = false;
   for (const LoadSpec& load : model.scene.loads)
     if (const DisplacementLoad* d = load.as<DisplacementLoad>()) {
-      for (int node : boundary_nodes(mesh, d->boundary)) prescribed[node] = 1;
+      for (int node : nodes_of(d->boundary)) prescribed[node] = 1;
       any = true;
     }
   if (!any) return {};
@@ -40,7 +49,7 @@ std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, 
   }
   // The obstacles push node i with λ n (a pair's row also its face nodes with −λ N_j n): what
   // remains is the support's push.
-  for (int i = 0; i < qp.n_constraints(); ++i) {
+  for (int i = 0; i < lambda.size(); ++i) {
     const Candidate& c = model.candidates[i];
     if (c.pair >= 0) {
       residual.segment(dim * c.node, dim) -= lambda[i] * c.normal.head(dim);
@@ -51,13 +60,13 @@ std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, 
     const Eigen::Vector3d n = detail::project(model.scene.obstacles[c.obstacle], mesh.nodes[c.node]).normal;
     residual.segment(dim * c.node, dim) -= lambda[i] * n.head(dim);
   }
-  if (lambda_t.size() > 0) residual -= friction_nodal_forces(model, qp, lambda_t);
+  if (friction_forces.size() > 0) residual -= friction_forces;
   std::vector<Reaction> out;
   for (const LoadSpec& load : model.scene.loads) {
     const DisplacementLoad* d = load.as<DisplacementLoad>();
     if (!d) continue;
     Reaction reaction{load.path, d->boundary, Eigen::Vector3d::Zero()};
-    for (int node : boundary_nodes(mesh, d->boundary)) reaction.force.head(dim) += residual.segment(dim * node, dim);
+    for (int node : nodes_of(d->boundary)) reaction.force.head(dim) += residual.segment(dim * node, dim);
     // With symmetry the mirrored parts push the same along the cuts and cancel across them.
     reaction.force = whole_body_sum(model, reaction.force);
     out.push_back(reaction);

@@ -9,13 +9,6 @@
 namespace contactqp {
 namespace {
 
-// Σ over elements of (measure × the element's stress at the node) and Σ of the measures:
-// rows σxx, σyy, σxy, σzz, σyz, σxz.
-struct StressSums {
-  Eigen::MatrixXd sum;
-  Eigen::VectorXd weight;
-};
-
 // The element's stress from the displacement gradient grad(a, b) = d u_a / d x_b at a node,
 // as rows σxx, σyy, σxy, σzz, σyz, σxz: what the element type's constitutive law makes of it
 // (plane strain or stress and the mixed formulation's pressure in 2D, the 6×6 D in 3D).
@@ -102,13 +95,22 @@ void add_elements(const Model& model, const Eigen::VectorXd& displacement, Stres
 
 }  // namespace
 
-NodalStress nodal_stresses(const Model& model, const Eigen::VectorXd& displacement) {
+StressSums stress_sums(const Model& model, const Eigen::VectorXd& displacement) {
   const int n = model.mesh.n_nodes();
   StressSums sums{Eigen::MatrixXd::Zero(6, n), Eigen::VectorXd::Zero(n)};
   if (model.dim == 2)
     add_elements<2>(model, displacement, sums);
   else
     add_elements<3>(model, displacement, sums);
+  return sums;
+}
+
+NodalStress nodal_stresses(const Model& model, const Eigen::VectorXd& displacement) {
+  return nodal_stresses(stress_sums(model, displacement), model.dim);
+}
+
+NodalStress nodal_stresses(const StressSums& sums, int dim) {
+  const int n = static_cast<int>(sums.weight.size());
   NodalStress stress;
   for (Eigen::VectorXd* c : {&stress.xx, &stress.yy, &stress.xy, &stress.zz, &stress.yz, &stress.xz, &stress.von_mises})
     c->resize(n);
@@ -123,7 +125,7 @@ NodalStress nodal_stresses(const Model& model, const Eigen::VectorXd& displaceme
     stress.zz[k] = zz;
     stress.yz[k] = yz;
     stress.xz[k] = xz;
-    const double shear = model.dim == 2 ? 3 * xy * xy : 3 * (xy * xy + yz * yz + xz * xz);
+    const double shear = dim == 2 ? 3 * xy * xy : 3 * (xy * xy + yz * yz + xz * xz);
     stress.von_mises[k] =
         std::sqrt(0.5 * ((xx - yy) * (xx - yy) + (yy - zz) * (yy - zz) + (zz - xx) * (zz - xx)) + shear);
   }

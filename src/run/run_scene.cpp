@@ -5,12 +5,15 @@
 #include "contactqp/errors.hpp"
 #include "contactqp/run.hpp"
 #include "contactqp/solve.hpp"
+#include "run/distributed_run.hpp"
 #include "run/phases.hpp"
 #include "run/problem_in_parts.hpp"
 
 namespace contactqp {
 
 RunReport run_scene(const Scene& scene, const RunOptions& options) {
+  // Under mpirun the petsc backend's run is distributed: no process holds the whole mesh.
+  if (detail::runs_distributed(scene, options)) return detail::run_scene_distributed(scene, options);
   Stopwatch total;
   validate_options(scene.solver);  // backend options too, before the mesh is built
   const auto phase = [&options](const char* name) {
@@ -38,6 +41,7 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   RunReport report;
   report.model = model;
   report.qp = qp;
+  report.size = {model->mesh.n_nodes(), model->mesh.n_elements(), qp->n_dofs(), qp->n_constraints()};
   report.options = scene.solver;
   report.options.observer = nullptr;  // a callback is not data: the report must not keep the caller's closure alive
   report.no_contact = options.no_contact;

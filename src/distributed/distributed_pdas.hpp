@@ -1,0 +1,59 @@
+// The petsc backend's contact solve on a distributed bound QP (distributed_problem.hpp): every
+// rank holds its rows of A, b and its own bounds and multipliers, nothing whole. The method is
+// the petsc backend's own (bound_pdas.hpp: the primal-dual active-set loop with one multigrid
+// hierarchy kept for the whole contact solve, a P1 level for quadratic elements, inexact steps);
+// this file hands the distributed problem to it and agrees its outcome over the ranks.
+#pragma once
+
+#include <petscksp.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "contactqp/qp.hpp"
+#include "distributed_problem.hpp"
+#include "petsc/bound_pdas.hpp"
+
+namespace contactqp::detail {
+
+struct DistributedPdasOptions {
+  double tol = 1e-8;
+  int max_iterations = 10000;
+  std::string petsc_options;
+  bool inexact = true;  // loose CG solves while the active set changes
+  // The relative KKT residual without stationarity (certificate.hpp) of this rank's v and μ (one
+  // per own bound); collective: returns the global value.
+  std::function<double(Vec v, const std::vector<double>& mu)> residual;
+};
+
+struct DistributedPdasResult {
+  Status status = Status::NumericalError;
+  std::string message;
+  Vec v = nullptr;         // A's layout; destroyed with the result
+  std::vector<double> mu;  // one per own bound, ≥ 0
+  int iterations = 0;
+  long long krylov_iterations = 0, linear_solves = 0;
+  int preconditioner_setups = 0;
+  long long active = 0;  // bounds active at the end, all ranks
+  double residual = 0;
+  double setup_seconds = 0, iterate_seconds = 0;
+  std::string method;
+  double matrix_bytes = 0, petsc_bytes = 0;  // the largest rank's: A, and A with the hierarchy
+  std::vector<std::string> warnings;
+  // The loop's hierarchy, for the certificate's one solve with A (θ): no second set-up.
+  std::shared_ptr<SolverOfA> solver_of_A;
+
+  DistributedPdasResult() = default;
+  DistributedPdasResult(DistributedPdasResult&& other) noexcept;
+  DistributedPdasResult& operator=(DistributedPdasResult&& other) noexcept;
+  DistributedPdasResult(const DistributedPdasResult&) = delete;
+  DistributedPdasResult& operator=(const DistributedPdasResult&) = delete;
+  ~DistributedPdasResult();
+};
+
+// Collective. InputError for bad PETSc options (on every rank); numerical failures in status.
+DistributedPdasResult solve_distributed_pdas(const DistributedBoundQp& qp, const DistributedPdasOptions& options);
+
+}  // namespace contactqp::detail

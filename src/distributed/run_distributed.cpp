@@ -1,0 +1,200 @@
+// run_scene() with each process holding only its part of everything that grows with the mesh
+// (docs/petsc.md, "Distributed runs"): the mesh, the model, A = QᵀKQ, the vectors and the
+// ParaView output. Taken for the petsc backend under mpirun (or with RunOptions::distributed);
+// the report is run_scene()'s, the summary and the result files on rank 0, and every rank writes
+// its piece of the .pvtu through RunReport::write_pieces. Registered with run_scene() at the end.
+#include <mpi.h>
+
+#include <algorithm>
+
+#include "backend_options.hpp"
+#include "contactqp/backend.hpp"
+#include "contactqp/errors.hpp"
+#include "contactqp/linear_solver.hpp"
+#include "contactqp/processes.hpp"
+#include "contactqp/solve.hpp"
+#include "distributed_post.hpp"
+#include "mpi.hpp"
+#include "qp/builtins.hpp"
+#include "qp/number_format.hpp"
+#include "run/distributed_run.hpp"
+#include "run/phases.hpp"
+
+namespace contactqp::detail {
+namespace {
+
+// The petsc backend's options (petsc_backend.cpp reads and checks the same keys; they were
+// validated before this runs): unaddressed keys and "petsc.key". A distributed run solves by the
+// kept hierarchy's pdas (hierarchy=kept), without the P1 start (distributed_pdas.cpp says why).
+DistributedPdasOptions pdas_options(const SolveOptions& options) {
+  DistributedPdasOptions out;
+  out.tol = options.tol;
+  out.max_iterations = options.max_iterations;
+  out.petsc_options = petsc_options_of(options.library_options);
+  for (const auto& [key, value] : options_for(Backend::Petsc, options.backend_options)) {
+    if (key == "inexact") out.inexact = value == "true" || value == "1";
+    if (key == "method" && value != "pdas")
+      throw InputError("backend option method", "= \"" + value + "\": a distributed run (mpirun) solves by pdas only");
+    if (key == "hierarchy" && value != "kept")
+      throw InputError("backend option hierarchy",
+                       "= \"" + value + "\": a distributed run (mpirun) keeps one hierarchy (hierarchy=kept)");
+  }
+  return out;
+}
+
+SolveResult solve_result(const DistributedPdasResult& solved, const DistributedModel& model, double tol, bool verbose) {
+  SolveResult result;
+  result.status = solved.status;
+  result.iterations = solved.iterations;
+  result.warnings = solved.warnings;
+  result.timings.add("factorize", solved.setup_seconds);
+  result.timings.add("iterate", solved.iterate_seconds);
+  result.timings.add("solve", solved.iterate_seconds);
+  auto& d = result.diagnostics;
+  d["outer_iterations"] = solved.iterations;
+  d["krylov_iterations"] = static_cast<double>(solved.krylov_iterations);
+  d["linear_solves"] = static_cast<double>(solved.linear_solves);
+  if (solved.preconditioner_setups > 0) d["preconditioner_setups"] = solved.preconditioner_setups;
+  d["active_constraints"] = static_cast<double>(solved.active);
+  d["kkt_residual"] = solved.residual;
+  d["petsc_matrix_mb_per_rank"] = solved.matrix_bytes / 1048576.0;
+  d["petsc_memory_mb_per_rank"] = solved.petsc_bytes / 1048576.0;
+  d["distributed"] = 1;
+  d["ranks"] = process_count();
+  d["dofs_this_rank"] = model.n_own_dofs;
+  const std::string how = solved.method + "; " + std::to_string(solved.iterations) + " outer steps, " +
+                          std::to_string(solved.krylov_iterations) + " Krylov iterations" +
+                          (solved.preconditioner_setups > 0
+                               ? ", " + std::to_string(solved.preconditioner_setups) + " preconditioner set-ups"
+                               : std::string()) +
+                          "; " + std::to_string(model.n_global_candidates) + " candidate rows, " +
+                          std::to_string(solved.active) + " in contact; A " +
+                          short_number(solved.matrix_bytes / 1048576.0) + " MiB per rank" +
+                          (verbose ? "; PETSc memory per rank " + short_number(solved.petsc_bytes / 1048576.0) +
+                                         " MiB (A, its working copy and the preconditioner)"
+                                   : std::string());
+  result.message = solved.status == Status::Converged ? "converged: KKT residual " + short_number(solved.residual) +
+                                                            " <= " + short_number(tol) + " (" + how + ")"
+                                                      : solved.message + " (" + how + ")";
+  return result;
+}
+
+// Whether run_scene() goes this way: the petsc backend with contact, a one-body scene, and
+// several processes or options.distributed.
+bool takes_distributed_run(const Scene& scene, const RunOptions& options) {
+  return scene.solver.backend == Backend::Petsc && !options.no_contact && scene.bodies.empty() && scene.pairs.empty() &&
+         (options.distributed || process_count() > 1);
+}
+
+// Collective. What run_scene() does, distributed.
+RunReport run_distributed(const Scene& scene, const RunOptions& options) {
+  Stopwatch total;
+  validate_options(scene.solver);
+  // What the distributed path does not model yet, refused as the one-process path refuses it.
+  if (!scene.steps.empty())
+    throw InputError("steps",
+                     "are not solved by a distributed run (the petsc backend under mpirun): run the scene "
+                     "on one process");
+  if (scene.friction_law() != FrictionLaw::None) {
+    const ProblemKind kind = scene.friction_law() == FrictionLaw::Tresca ? ProblemKind::Tresca : ProblemKind::Coulomb;
+    std::string others;
+    for (Backend other : available_backends(kind)) others += (others.empty() ? "" : ", ") + to_string(other);
+    throw InputError("backend", "= \"petsc\": does not solve " + to_string(kind) +
+                                    " problems (it solves frictionless ones); backends that do: " + others);
+  }
+  const DistributedPdasOptions settings = pdas_options(scene.solver);
+  const auto phase = [&options](const char* name) {
+    begin_phase(name);  // where the ranks agree that none failed (run/phases.hpp)
+    if (options.on_phase) options.on_phase(name);
+  };
+
+  phase("mesh");
+  // PETSc, with the user's options on its command line: after the agreement above, since
+  // starting it is collective (a rank that failed before would leave the others waiting in it).
+  start_process_runtime(scene.solver.library_options);
+  auto model = std::make_shared<DistributedModel>(build_distributed_model(scene, options.build, phase));
+  RunReport report;
+  report.options = scene.solver;
+  report.options.observer = nullptr;
+  report.timings.merge(model->local.timings);
+  report.size = {model->n_global_nodes, model->n_global_elements, model->n_global_dofs, model->n_global_candidates};
+
+  DistributedSolution solution;
+  {
+    phase("assemble");
+    Stopwatch clock;
+    DistributedBoundQp qp = assemble_distributed_bound_qp(*model);
+    report.timings.add("assemble", clock.seconds());
+
+    phase("solve");
+    DistributedPdasOptions solve_settings = settings;
+    solve_settings.residual = [&](Vec v, const std::vector<double>& mu) {
+      return distributed_kkt_residual(*model, qp, v, mu);
+    };
+    DistributedPdasResult solved = solve_distributed_pdas(qp, solve_settings);
+    report.result = solve_result(solved, *model, settings.tol, scene.solver.verbose);
+    report.timings.merge(report.result.timings);
+    solution = solution_of(*model, qp, solved.v, solved.mu);
+
+    phase("certify");
+    clock.restart();
+    report.certificate =
+        certificate_from(distributed_certificate_terms(*model, qp, solution, solved.solver_of_A.get(), settings.tol));
+    report.timings.add("certify", clock.seconds());
+  }  // A, its preconditioner and the PETSc vectors are freed here, before the output is made
+
+  phase("postprocess");
+  Stopwatch clock;
+  auto local_u = std::make_shared<Eigen::VectorXd>(local_free_values(*model, solution.u));
+  const Eigen::VectorXd displacement = full_displacement(model->local, *local_u);
+  const ContactSurface surface = gather_contact_surface(*model, solution.lambda);
+  auto own_pressure = std::make_shared<std::vector<double>>();
+  report.contact = distributed_contact_summary(*model, surface, displacement, *own_pressure);
+  if (surface.model) {
+    report.hertz = compare_with_hertz(*surface.model, report.contact);
+    report.boussinesq = compare_with_boussinesq(*surface.model, report.contact);
+    report.model = surface.model;
+    report.qp = surface.qp;
+    report.result.lambda = surface.lambda;
+  } else {
+    auto shape = std::make_shared<Model>();
+    shape->scene = model->local.scene;
+    shape->dim = model->local.dim;
+    shape->mesh.dim = model->local.mesh.dim;
+    shape->mesh.order = model->local.mesh.order;
+    report.model = shape;
+    report.qp = std::make_shared<QuadraticProgram>();
+  }
+  report.reactions = distributed_reactions(*model, *local_u, solution.lambda);
+  report.timings.add("postprocess", clock.seconds());
+
+  report.warnings = model->local.warnings;
+  report.warnings.insert(report.warnings.end(), report.result.warnings.begin(), report.result.warnings.end());
+  if (report.contact.penetrating_non_candidates > 0)
+    report.warnings.push_back(std::to_string(report.contact.penetrating_non_candidates) +
+                              " boundary nodes outside the candidate set penetrate an obstacle (by up to " +
+                              format_value(report.contact.max_non_candidate_penetration) + "); raise contact.max_gap");
+  auto own_lambda = std::make_shared<Eigen::VectorXd>(solution.lambda);
+  report.write_pieces = [model, local_u, own_lambda, own_pressure](const std::string& path) {
+    const Eigen::VectorXd moved = full_displacement(model->local, *local_u);
+    const PieceArrays piece = piece_arrays(*model, moved, *local_u, *own_lambda, *own_pressure);
+    write_pvtu(path, model->local.mesh, piece.arrays());
+  };
+  Timings timings;
+  for (const auto& [name, seconds] : report.timings.phases())
+    if (name != "total") timings.add(name, seconds);
+  timings.add("total", total.seconds());
+  report.timings = timings;
+  return report;
+}
+
+}  // namespace
+}  // namespace contactqp::detail
+
+// run_scene() goes this way for the petsc backend under mpirun (run/distributed_run.hpp).
+CONTACTQP_BUILTIN(distributed_run) {
+  DistributedRun run;
+  run.takes = takes_distributed_run;
+  run.run = run_distributed;
+  register_distributed_run(run);
+}
