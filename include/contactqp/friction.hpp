@@ -41,7 +41,8 @@ struct FrictionBlock {
   int n_directions = 0;  // tangential directions per contact row: 1 in 2D, 2 in 3D; 0 without friction
   // (m · n_directions) × n: row i·n_directions + k is t_kᵀ at the DOFs of contact row i's node
   // (between two bodies t_kᵀ(u_i − Σ_j N_j(ξ) u_j)); the t_k are unit vectors orthogonal to the
-  // row's normal and to each other.
+  // row's normal (between two bodies the common normal along which the sides meet, which may
+  // lean off B's face normal) and to each other.
   Eigen::SparseMatrix<double> T;
   // m · n_directions: the tangential position at the start of this load step (T u_prev), so that
   // T u − offset is the step's slip. Zero for the first step.

@@ -37,6 +37,10 @@ struct Candidate {
   std::array<int, 6> face_nodes{{-1, -1, -1, -1, -1, -1}};
   std::array<double, 6> weights{{0, 0, 0, 0, 0, 0}};  // N_j(ξ), summing to 1
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();   // the face's outward unit normal at ξ (global axes)
+  // Pairs: the common normal at ξ, (n_face − n_node)/|…| from the two sides' smoothed normals,
+  // the line along which the node met its partner: the frame of the friction rows, whose
+  // tangents must not see the gap close (on curved sides n leans off it); zero for obstacles.
+  Eigen::Vector3d common_normal = Eigen::Vector3d::Zero();
 };
 
 // One body of a scene with several, within the model's one mesh: its nodes and elements are

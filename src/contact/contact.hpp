@@ -119,8 +119,9 @@ ContactRowEntries contact_row(const Model& model, const Candidate& candidate);
 // friction_rows.cpp: friction (friction.hpp, docs/friction.md).
 // The friction section that applies to a candidate's row, or nullptr (frictionless).
 const FrictionSpec* friction_of(const Model& model, const Candidate& candidate);
-// The row's unit normal (from the obstacle or the other body towards the node, global axes)
-// and its dim − 1 unit tangents: t = (n_y, −n_x) in 2D; in 3D t1 the scene's own x axis
+// The frame of a row's friction: its unit normal (from the obstacle or the other body towards
+// the node, global axes; a pair's common normal, Candidate::common_normal) and its dim − 1
+// unit tangents: t = (n_y, −n_x) in 2D; in 3D t1 the scene's own x axis
 // (its y axis where n lies near x) across n, and t2 = n × t1. At a node with a prescribed
 // direction within 0.1 of the plane across n (a symmetry plane's normal) that direction is a
 // tangent (t2 in 3D, t1 = t2 × n normalised), so that its row vanishes once the prescribed

@@ -34,7 +34,10 @@ const FrictionSpec* friction_of(const Model& model, const Candidate& c) {
 }
 
 Eigen::Vector3d row_normal(const Model& model, const Candidate& c) {
-  if (c.pair >= 0) return c.normal;
+  // A pair's gap closes along the common normal: two identical spheres pressed together meet
+  // along z while each side's normal leans by r/R, and tangents across the face normal counted
+  // a share of the approach as slip (a slipping rim under the press alone, where Mindlin has none).
+  if (c.pair >= 0) return c.common_normal.squaredNorm() > 0 ? c.common_normal : c.normal;
   return project(model.scene.obstacles[c.obstacle], model.mesh.nodes[c.node]).normal;
 }
 

@@ -359,6 +359,10 @@ std::vector<Candidate> select_pair_candidates(const Mesh& mesh, const std::strin
       candidate.normal = hit.projection.normal;
       candidate.gap = (x - hit.projection.point).dot(candidate.normal);
     }
+    Eigen::Vector3d face_normal = Eigen::Vector3d::Zero();  // smoothed, as the projection used it
+    for (int j = 0; j < candidate.n_face_nodes; ++j)
+      face_normal += candidate.weights[j] * vertex_normal.at(candidate.face_nodes[j]);
+    candidate.common_normal = (face_normal.normalized() - nodes.normals[k]).normalized();
     // Facing as for an obstacle: the node's outward normal points against the face's.
     const bool facing = nodes.normals[k].dot(candidate.normal) < -1e-9;
     if (facing && candidate.gap <= max_gap) candidates.push_back(candidate);

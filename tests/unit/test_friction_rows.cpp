@@ -117,14 +117,48 @@ TEST_CASE("a pair's rows measure the relative tangential motion of the two sides
   for (size_t r = 0; r < rows.size(); ++r) {
     const Candidate& c = a.model.candidates[r];
     const Eigen::Vector3d t = detail::row_tangents(a.model, c).front();
-    double common = 0, node_side = 0;
+    double common = 0, node_side = 0, approach = 0;
     for (const auto& [dof, value] : rows[r].entries) {
       common += value * (dof % dim == 0 ? 0.3 : -0.7);  // the translation (0.3, −0.7)
       if (dof / dim == c.node) node_side += value * t[dof % dim];
+      // The node moved towards its partner along the common normal: no slip.
+      if (dof / dim == c.node) approach += value * c.common_normal[dof % dim];
     }
     CHECK(std::abs(common) < 1e-14);
     CHECK(node_side == Approx(1).epsilon(1e-14));
+    CHECK(c.common_normal.norm() == Approx(1).epsilon(1e-14));
+    CHECK(c.common_normal.dot(c.normal) > 0.9);
+    if (all_free(a.model, c.node)) CHECK(std::abs(approach) < 1e-14);  // on the plane t is the plane's normal
   }
+}
+
+TEST_CASE("a pair with friction presses along the common normal and a frictionless one along the face normal",
+          "[unit][friction]") {
+  // The normal row and the tangents of a frictional pair are orthogonal, so the normal force has
+  // no share along the friction (two identical spheres' stick zone held p·r/R of it).
+  const Assembled frictional =
+      assemble("scenes/two-cylinders.json", R"({"contact": {"friction": {"coefficient": 0.3}}})");
+  for (const Candidate& c : frictional.model.candidates) {
+    CHECK((c.normal - c.common_normal).norm() < 1e-15);
+    if (all_free(frictional.model, c.node))
+      for (const Eigen::Vector3d& t : detail::row_tangents(frictional.model, c))
+        CHECK(std::abs(t.dot(c.normal)) < 1e-15);
+  }
+  // Frictionless and μ = 0: today's rows (the face's normal, its gap), which lean off the common
+  // normal away from the first touch.
+  const Assembled plain = assemble("scenes/two-cylinders.json", "{}");
+  const Assembled zero = assemble("scenes/two-cylinders.json", R"({"contact": {"friction": {"coefficient": 0}}})");
+  REQUIRE(plain.model.candidates.size() == zero.model.candidates.size());
+  REQUIRE(plain.model.candidates.size() == frictional.model.candidates.size());
+  double lean = 0;
+  for (size_t i = 0; i < plain.model.candidates.size(); ++i) {
+    const Candidate &p = plain.model.candidates[i], &z = zero.model.candidates[i], &f = frictional.model.candidates[i];
+    CHECK(z.normal == p.normal);
+    CHECK(z.gap == p.gap);
+    lean = std::max(lean, (p.normal - p.common_normal).norm());
+    CHECK(f.gap == Approx(p.gap).epsilon(0.05).margin(1e-15));  // the same partner, along a direction r/R apart
+  }
+  CHECK(lean > 1e-3);
 }
 
 TEST_CASE("a rotated scene's rows are the scene's own rows turned", "[unit][friction]") {

@@ -123,9 +123,9 @@ TEST_CASE("mu = 0 gives the frictionless answer", "[validation][friction]") {
 }
 
 // Not met yet, so out of slow_cases (CI) until it is: on the shipped mesh (a/h ≈ 5, 7.4e4 DOFs)
-// c is off by −9.0 % and −5.6 % and q's L2 error is 90 % and 34 % at Q/(μP) = 0.3 and 0.7
-// (docs/friction.md: the pair's tangents and the mesh are the open causes). Run it by its tag: contactqp_tests "[mindlin-spheres]"
-// (about 2.5 minutes).
+// c is off by −0.53 % and −0.87 % and q's L2 error is 13.4 % and 5.5 % at Q/(μP) = 0.31 and 0.69;
+// the 13.4 % (against 8 %) falls slowly with the mesh (12.2 % at 1.5e5 DOFs; docs/friction.md).
+// Run it by its tag: contactqp_tests "[mindlin-spheres]" (23 s, 0.95 GB).
 TEST_CASE("Cattaneo-Mindlin: two identical spheres", "[validation][friction][.mindlin-spheres]") {
   check_mindlin(run("scenes/mindlin-spheres.json"), 0.03, 0.08);
 }
