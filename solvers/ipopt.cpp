@@ -44,9 +44,6 @@ std::mutex& ipopt_mutex() {
   return mutex;
 }
 
-// Beyond Ipopt's nlp_lower_bound_inf / nlp_upper_bound_inf (±1e19 by default): no bound.
-constexpr double kNoBound = 1e300;
-
 // The QP as Ipopt's TNLP. The sparsity patterns are fixed here, once.
 class QpNlp : public ContactNlp {
  public:

@@ -13,8 +13,6 @@ namespace {
 using Ipopt::Index;
 using Ipopt::Number;
 
-constexpr double kNoBound = 1e300;  // beyond Ipopt's ±1e19: no bound
-
 // x = (u [n], λ_N [m], λ_T [m·nd]); constraints: the n equalities, then one disc per node with
 // r_i > 0 (3D only).
 class FrictionDualNlp : public ContactNlp {

@@ -26,6 +26,9 @@
 
 namespace contactqp::detail {
 
+// Beyond Ipopt's nlp_lower_bound_inf / nlp_upper_bound_inf (±1e19 by default): no bound.
+inline constexpr double kNoBound = 1e300;
+
 // What solve_ipopt reads back from either NLP.
 class ContactNlp : public Ipopt::TNLP {
  public:

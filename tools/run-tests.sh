@@ -69,20 +69,29 @@ UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   run_ctest build-asan -LE 'large|sources'
 stage_done 2
 
-echo "== 3/3 libFuzzer on the scene parser and on mesh files, 30 s each"
+echo "== 3/3 libFuzzer on the scene parser and on mesh files, 30 s each, side by side"
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DCONTACTQP_BUILD_FUZZER=ON \
   -DCONTACTQP_BUILD_TESTS=OFF -DCONTACTQP_BUILD_BENCHMARKS=OFF -DCONTACTQP_BUILD_PYTHON=OFF
 cmake --build build-fuzz --target fuzz_scene fuzz_mesh -j$jobs
 rm -rf build-fuzz/corpus build-fuzz/mesh-corpus && mkdir -p build-fuzz/corpus && cp scenes/*.json build-fuzz/corpus/
-build-fuzz/fuzz/fuzz_scene build-fuzz/corpus -dict=fuzz/scene.dict -max_total_time=30 -timeout=10 \
-  -rss_limit_mb=2048 -artifact_prefix=build-fuzz/ -print_final_stats=1
-passed=$((passed + 1))
-# The seeds: every shipped scene's mesh, coarse, as .msh 4.1 and 2.2, binary and ASCII (stage 1's
-# contactqp meshes them, the gmsh program converts).
+# The seeds of the mesh fuzzer: every shipped scene's mesh, coarse, as .msh 4.1 and 2.2, binary
+# and ASCII (stage 1's contactqp meshes them, the gmsh program converts).
 /usr/bin/python3 tools/mesh_corpus.py build/contactqp build-fuzz/mesh-corpus
+# Each fuzzer runs on one core, so the two run at once; each writes its own log, shown after.
+build-fuzz/fuzz/fuzz_scene build-fuzz/corpus -dict=fuzz/scene.dict -max_total_time=30 -timeout=10 \
+  -rss_limit_mb=2048 -artifact_prefix=build-fuzz/ -print_final_stats=1 > build-fuzz/fuzz_scene.log 2>&1 &
+scene_pid=$!
 build-fuzz/fuzz/fuzz_mesh build-fuzz/mesh-corpus -dict=fuzz/mesh.dict -max_total_time=30 -timeout=10 \
-  -rss_limit_mb=2048 -artifact_prefix=build-fuzz/mesh- -print_final_stats=1
-passed=$((passed + 1))
+  -rss_limit_mb=2048 -artifact_prefix=build-fuzz/mesh- -print_final_stats=1 > build-fuzz/fuzz_mesh.log 2>&1 &
+mesh_pid=$!
+scene_status=0
+mesh_status=0
+wait $scene_pid || scene_status=$?
+wait $mesh_pid || mesh_status=$?
+cat build-fuzz/fuzz_scene.log build-fuzz/fuzz_mesh.log
+[ $scene_status -eq 0 ] || { echo "run-tests: fuzz_scene found a failure (exit $scene_status)" >&2; exit 1; }
+[ $mesh_status -eq 0 ] || { echo "run-tests: fuzz_mesh found a failure (exit $mesh_status)" >&2; exit 1; }
+passed=$((passed + 2))
 stage_done 3
 
 echo "run-tests: $passed passed, 0 failed ($(($(date +%s) - started)) s)"

@@ -197,4 +197,10 @@ void Observer::rethrow_if_failed() {
   }
 }
 
+Eigen::MatrixXd profile_array(const std::vector<ContactProfilePoint>& profile) {
+  Eigen::MatrixXd out(profile.size(), 2);
+  for (size_t i = 0; i < profile.size(); ++i) out.row(i) << profile[i].s, profile[i].pressure;
+  return out;
+}
+
 }  // namespace contactqp::python

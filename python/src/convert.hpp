@@ -6,7 +6,9 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
+#include "contactqp/post.hpp"
 #include "contactqp/qp.hpp"
 
 namespace contactqp::python {
@@ -61,5 +63,8 @@ class Observer {
   py::object callable_;
   std::unique_ptr<py::error_already_set> error_;
 };
+
+// (s, pressure) per node of a contact profile, as the JSON writes it: an N x 2 array.
+Eigen::MatrixXd profile_array(const std::vector<ContactProfilePoint>& profile);
 
 }  // namespace contactqp::python

@@ -29,13 +29,6 @@ struct BodyView {
 // The first dim components, as the JSON writes vectors.
 Eigen::VectorXd head(const Eigen::Vector3d& v, int dim) { return v.head(dim); }
 
-// (s, pressure) per node, as the JSON's profiles: an N x 2 array.
-Eigen::MatrixXd profile_array(const std::vector<ContactProfilePoint>& profile) {
-  Eigen::MatrixXd out(profile.size(), 2);
-  for (size_t i = 0; i < profile.size(); ++i) out.row(i) << profile[i].s, profile[i].pressure;
-  return out;
-}
-
 // The profile's nodal forces and node numbers, in the same order as its rows.
 Eigen::VectorXd profile_forces(const std::vector<ContactProfilePoint>& profile) {
   Eigen::VectorXd out(profile.size());

@@ -21,13 +21,6 @@ struct ContactView {
   ContactSummary summary;
 };
 
-// (s, pressure) per candidate, as the JSON's profile: an N x 2 array.
-Eigen::MatrixXd profile_array(const std::vector<ContactProfilePoint>& profile) {
-  Eigen::MatrixXd out(profile.size(), 2);
-  for (size_t i = 0; i < profile.size(); ++i) out.row(i) << profile[i].s, profile[i].pressure;
-  return out;
-}
-
 py::object hertz_object(const std::optional<HertzComparison>& hertz) { return hertz ? py::cast(*hertz) : py::none(); }
 
 py::list obstacles_list(const ContactView& view) {

@@ -14,10 +14,6 @@
 namespace contactqp::detail {
 namespace {
 
-void check(PetscErrorCode code, const char* what) {
-  if (code) throw std::runtime_error(std::string(what) + ": " + error_text(code));
-}
-
 // x_C = M x_C at every own candidate node (M = T, Q, Tᵀ or Qᵀ of its transform).
 template <class Pick>
 void per_node(const DistributedModel& model, const DistributedBoundQp& qp, double* x, Pick pick) {
@@ -52,7 +48,7 @@ Eigen::VectorXd from_rows(const DistributedModel& model, Vec rows) {
 // K u on the own rows from u: Tᵀ A T u (A v, with v = T u at the candidate nodes).
 Eigen::VectorXd K_times_u(const DistributedModel& model, const DistributedBoundQp& qp, const Eigen::VectorXd& u) {
   Vec v = nullptr, y = nullptr;
-  check(MatCreateVecs(qp.A, &v, &y), "MatCreateVecs");
+  check_petsc(MatCreateVecs(qp.A, &v, &y), "MatCreateVecs");
   Eigen::VectorXd Tu = u;
   per_node(model, qp, Tu.data(), [](const NodeTransform& t) -> const Eigen::MatrixXd& { return t.T; });
   to_rows(model, Tu, v);
@@ -61,7 +57,7 @@ Eigen::VectorXd K_times_u(const DistributedModel& model, const DistributedBoundQ
   per_node(model, qp, Ku.data(), [](const NodeTransform& t) { return Eigen::MatrixXd(t.T.transpose()); });
   VecDestroy(&v);
   VecDestroy(&y);
-  check(code, "MatMult");
+  check_petsc(code, "MatMult");
   return Ku;
 }
 
@@ -144,7 +140,7 @@ CertificateTerms distributed_certificate_terms(const DistributedModel& model, co
   // rᵀK⁻¹r = (Qᵀr)ᵀ A⁻¹ (Qᵀr).
   per_node(model, qp, r.data(), [](const NodeTransform& t) { return Eigen::MatrixXd(t.Q.transpose()); });
   Vec rhs = nullptr, y = nullptr;
-  check(MatCreateVecs(qp.A, &y, &rhs), "MatCreateVecs");
+  check_petsc(MatCreateVecs(qp.A, &y, &rhs), "MatCreateVecs");
   to_rows(model, r, rhs);
   PetscReal force = 0, dot = 0;
   VecNorm(rhs, NORM_INFINITY, &force);

@@ -26,10 +26,6 @@ namespace {
 // scene can name it: names come from JSON strings and Gmsh's physical names, never with '<').
 const char* const kOuter = "<outer>";
 
-void check(PetscErrorCode code, const char* what) {
-  if (code) throw std::runtime_error(std::string(what) + ": " + error_text(code));
-}
-
 // What rank 0 sends each rank: integers and coordinates, read back in the order written.
 struct Packet {
   std::vector<int> ints;
@@ -365,32 +361,32 @@ PetscSF names_sf(const std::vector<long long>& names, long long n_names) {
     throw std::runtime_error("the refined mesh has more node names (" + std::to_string(n_names) +
                              ") than PETSc's 32-bit indices hold; use fewer body.mesh.refinements");
   PetscLayout layout = nullptr;
-  check(PetscLayoutCreate(PETSC_COMM_WORLD, &layout), "PetscLayoutCreate");
+  check_petsc(PetscLayoutCreate(PETSC_COMM_WORLD, &layout), "PetscLayoutCreate");
   PetscLayoutSetSize(layout, static_cast<PetscInt>(n_names));
   PetscLayoutSetBlockSize(layout, 1);
-  check(PetscLayoutSetUp(layout), "PetscLayoutSetUp");
+  check_petsc(PetscLayoutSetUp(layout), "PetscLayoutSetUp");
   std::vector<PetscInt> remote(names.begin(), names.end());
   for (long long name : names)
     if (name < 0 || name >= n_names)
       throw std::logic_error("distributed mesh: a node name " + std::to_string(name) + " outside [0, " +
                              std::to_string(n_names) + ")");
   PetscSF sf = nullptr;
-  check(PetscSFCreate(PETSC_COMM_WORLD, &sf), "PetscSFCreate");
-  check(PetscSFSetGraphLayout(sf, layout, static_cast<PetscInt>(remote.size()), nullptr, PETSC_COPY_VALUES,
-                              remote.data()),
-        "PetscSFSetGraphLayout");
+  check_petsc(PetscSFCreate(PETSC_COMM_WORLD, &sf), "PetscSFCreate");
+  check_petsc(PetscSFSetGraphLayout(sf, layout, static_cast<PetscInt>(remote.size()), nullptr, PETSC_COPY_VALUES,
+                                    remote.data()),
+              "PetscSFSetGraphLayout");
   PetscLayoutDestroy(&layout);
-  check(PetscSFSetUp(sf), "PetscSFSetUp");
+  check_petsc(PetscSFSetUp(sf), "PetscSFSetUp");
   return sf;
 }
 
 // Each leaf's entry becomes the `op` (MPI_MIN, MPI_MAX) of the entries of all leaves with its name.
 void combine_by_name(PetscSF sf, PetscInt n_roots, std::vector<int>& values, MPI_Op op, int neutral) {
   std::vector<int> roots(n_roots, neutral);
-  check(PetscSFReduceBegin(sf, MPI_INT, values.data(), roots.data(), op), "PetscSFReduceBegin");
-  check(PetscSFReduceEnd(sf, MPI_INT, values.data(), roots.data(), op), "PetscSFReduceEnd");
-  check(PetscSFBcastBegin(sf, MPI_INT, roots.data(), values.data(), MPI_REPLACE), "PetscSFBcastBegin");
-  check(PetscSFBcastEnd(sf, MPI_INT, roots.data(), values.data(), MPI_REPLACE), "PetscSFBcastEnd");
+  check_petsc(PetscSFReduceBegin(sf, MPI_INT, values.data(), roots.data(), op), "PetscSFReduceBegin");
+  check_petsc(PetscSFReduceEnd(sf, MPI_INT, values.data(), roots.data(), op), "PetscSFReduceEnd");
+  check_petsc(PetscSFBcastBegin(sf, MPI_INT, roots.data(), values.data(), MPI_REPLACE), "PetscSFBcastBegin");
+  check_petsc(PetscSFBcastEnd(sf, MPI_INT, roots.data(), values.data(), MPI_REPLACE), "PetscSFBcastEnd");
 }
 
 // Ownership (the lowest rank holding a node), own nodes first, global numbers, the node SF.
@@ -426,20 +422,20 @@ void number_nodes(MeshPart& out, const std::vector<long long>& names, long long 
   out.n_global_nodes = total;
 
   PetscLayout layout = nullptr;
-  check(PetscLayoutCreate(PETSC_COMM_WORLD, &layout), "PetscLayoutCreate");
+  check_petsc(PetscLayoutCreate(PETSC_COMM_WORLD, &layout), "PetscLayoutCreate");
   PetscLayoutSetLocalSize(layout, out.n_owned);
   PetscLayoutSetBlockSize(layout, 1);
-  check(PetscLayoutSetUp(layout), "PetscLayoutSetUp");
+  check_petsc(PetscLayoutSetUp(layout), "PetscLayoutSetUp");
   std::vector<PetscInt> remote(out.global_node.begin(), out.global_node.end());
   for (int global : out.global_node)
     if (global < 0 || global >= total)
       throw std::logic_error("distributed mesh: a global node number " + std::to_string(global) + " outside [0, " +
                              std::to_string(total) + ")");
   PetscSF sf = nullptr;
-  check(PetscSFCreate(PETSC_COMM_WORLD, &sf), "PetscSFCreate");
-  check(PetscSFSetGraphLayout(sf, layout, n, nullptr, PETSC_COPY_VALUES, remote.data()), "PetscSFSetGraphLayout");
+  check_petsc(PetscSFCreate(PETSC_COMM_WORLD, &sf), "PetscSFCreate");
+  check_petsc(PetscSFSetGraphLayout(sf, layout, n, nullptr, PETSC_COPY_VALUES, remote.data()), "PetscSFSetGraphLayout");
   PetscLayoutDestroy(&layout);
-  check(PetscSFSetUp(sf), "PetscSFSetUp");
+  check_petsc(PetscSFSetUp(sf), "PetscSFSetUp");
   out.shared = SharedNodes(sf, n, out.n_owned);
 }
 

@@ -24,10 +24,6 @@
 namespace contactqp::detail {
 namespace {
 
-void check(PetscErrorCode code, const char* what) {
-  if (code) throw std::runtime_error(std::string(what) + ": " + error_text(code));
-}
-
 // The transform of every candidate node this rank holds; the candidates of one node are
 // consecutive (select_candidates() goes node by node). A node's rows that are linearly
 // dependent are bad input, reported by the rank that owns the node.
@@ -192,7 +188,7 @@ void add_elements(const DistributedModel& dm, const DistributedBoundQp& qp, Eige
         const int dof = dim * v[i] + c;
         if (model.free_index[dof] >= 0 || dm.node_row[v[i]] < 0) continue;
         const PetscInt row = dm.node_row[v[i]] + c;
-        check(MatSetValue(qp.A, row, row, Ke(dim * i + c, dim * i + c), ADD_VALUES), "MatSetValue");
+        check_petsc(MatSetValue(qp.A, row, row, Ke(dim * i + c, dim * i + c), ADD_VALUES), "MatSetValue");
       }
     // f −= K_fp u_p, before the change of variables (f is in u).
     for (int a : moved) {
@@ -222,7 +218,7 @@ void add_elements(const DistributedModel& dm, const DistributedBoundQp& qp, Eige
     const Eigen::MatrixXd symmetric = 0.5 * (Kf + Kf.transpose());  // exactly symmetric, for CG and MAT_SPD
     rows.resize(m);
     for (int k = 0; k < m; ++k) rows[k] = dm.row_of_free[free[k]];
-    check(MatSetValues(qp.A, m, rows.data(), m, rows.data(), symmetric.data(), ADD_VALUES), "MatSetValues");
+    check_petsc(MatSetValues(qp.A, m, rows.data(), m, rows.data(), symmetric.data(), ADD_VALUES), "MatSetValues");
   }
 }
 
@@ -281,7 +277,7 @@ void add_near_null_space(const DistributedModel& dm, DistributedBoundQp& qp, con
   }
   for (int j = 0; j < k; ++j) {
     Vec mode = nullptr;
-    check(MatCreateVecs(qp.A, &mode, nullptr), "MatCreateVecs");
+    check_petsc(MatCreateVecs(qp.A, &mode, nullptr), "MatCreateVecs");
     PetscScalar* values = nullptr;
     VecGetArray(mode, &values);
     for (int row = 0; row < dm.n_own_rows; ++row) values[row] = modes(row, j);
@@ -316,15 +312,15 @@ void add_coarse_space(const DistributedModel& dm, DistributedBoundQp& qp, const 
   qp.vertex_of_node = coarse;
 
   Mat& P = qp.coarse_interpolation;
-  check(MatCreate(PETSC_COMM_WORLD, &P), "MatCreate");
-  check(MatSetSizes(P, dm.n_own_rows, static_cast<PetscInt>(dim * own), static_cast<PetscInt>(dm.n_global_rows),
-                    static_cast<PetscInt>(dim * total)),
-        "MatSetSizes");
-  check(MatSetType(P, MATAIJ), "MatSetType");
-  check(MatSetBlockSizes(P, dim, dim), "MatSetBlockSizes");
+  check_petsc(MatCreate(PETSC_COMM_WORLD, &P), "MatCreate");
+  check_petsc(MatSetSizes(P, dm.n_own_rows, static_cast<PetscInt>(dim * own), static_cast<PetscInt>(dm.n_global_rows),
+                          static_cast<PetscInt>(dim * total)),
+              "MatSetSizes");
+  check_petsc(MatSetType(P, MATAIJ), "MatSetType");
+  check_petsc(MatSetBlockSizes(P, dim, dim), "MatSetBlockSizes");
   // At most two vertices' dim columns per row (a candidate node's T mixes its components).
-  check(MatSeqAIJSetPreallocation(P, 2 * dim, nullptr), "MatSeqAIJSetPreallocation");
-  check(MatMPIAIJSetPreallocation(P, 2 * dim, nullptr, 2 * dim, nullptr), "MatMPIAIJSetPreallocation");
+  check_petsc(MatSeqAIJSetPreallocation(P, 2 * dim, nullptr), "MatSeqAIJSetPreallocation");
+  check_petsc(MatMPIAIJSetPreallocation(P, 2 * dim, nullptr, 2 * dim, nullptr), "MatMPIAIJSetPreallocation");
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   std::vector<PetscInt> rows(dim), columns;
   for (int node = 0; node < dm.n_owned; ++node) {
@@ -354,18 +350,18 @@ void add_coarse_space(const DistributedModel& dm, DistributedBoundQp& qp, const 
       part = transform.T * part;
       for (std::size_t a = 0; a < component.size(); ++a) block.row(component[a]) = part.row(a);
     }
-    check(MatSetValues(P, dim, rows.data(), static_cast<PetscInt>(columns.size()), columns.data(), block.data(),
-                       INSERT_VALUES),
-          "MatSetValues");
+    check_petsc(MatSetValues(P, dim, rows.data(), static_cast<PetscInt>(columns.size()), columns.data(), block.data(),
+                             INSERT_VALUES),
+                "MatSetValues");
   }
-  check(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  check(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  check_petsc(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check_petsc(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 
   // The coarse level's rigid modes: at each own vertex in its DOF components, 0 where prescribed.
   const int k = dim == 2 ? 3 : 6;
   for (int j = 0; j < k; ++j) {
     Vec mode = nullptr;
-    check(MatCreateVecs(P, &mode, nullptr), "MatCreateVecs");
+    check_petsc(MatCreateVecs(P, &mode, nullptr), "MatCreateVecs");
     qp.coarse_near_null_space.push_back(mode);
   }
   std::vector<PetscScalar*> values(k);
@@ -419,13 +415,13 @@ DistributedBoundQp assemble_distributed_bound_qp(const DistributedModel& dm) {
   std::vector<PetscInt> diagonal, off;
   count_nonzeros(dm, diagonal, off);
   const PetscInt n = static_cast<PetscInt>(dm.n_global_rows), local = dm.n_own_rows;
-  check(MatCreate(PETSC_COMM_WORLD, &qp.A), "MatCreate");
-  check(MatSetSizes(qp.A, local, local, n, n), "MatSetSizes");
-  check(MatSetType(qp.A, MATAIJ), "MatSetType");
-  check(MatSetBlockSize(qp.A, dim), "MatSetBlockSize");
+  check_petsc(MatCreate(PETSC_COMM_WORLD, &qp.A), "MatCreate");
+  check_petsc(MatSetSizes(qp.A, local, local, n, n), "MatSetSizes");
+  check_petsc(MatSetType(qp.A, MATAIJ), "MatSetType");
+  check_petsc(MatSetBlockSize(qp.A, dim), "MatSetBlockSize");
   qp.block_size = dim;
-  check(MatSeqAIJSetPreallocation(qp.A, 0, diagonal.data()), "MatSeqAIJSetPreallocation");
-  check(MatMPIAIJSetPreallocation(qp.A, 0, diagonal.data(), 0, off.data()), "MatMPIAIJSetPreallocation");
+  check_petsc(MatSeqAIJSetPreallocation(qp.A, 0, diagonal.data()), "MatSeqAIJSetPreallocation");
+  check_petsc(MatMPIAIJSetPreallocation(qp.A, 0, diagonal.data(), 0, off.data()), "MatMPIAIJSetPreallocation");
   diagonal = {};
   off = {};
   MatSetOption(qp.A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE);
@@ -437,13 +433,13 @@ DistributedBoundQp assemble_distributed_bound_qp(const DistributedModel& dm) {
   double largest = 0;
   bool finite = true;
   add_elements(dm, qp, f, largest, finite);
-  check(MatAssemblyBegin(qp.A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  check(MatAssemblyEnd(qp.A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  check_petsc(MatAssemblyBegin(qp.A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check_petsc(MatAssemblyEnd(qp.A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   MatSetOption(qp.A, MAT_SYMMETRIC, PETSC_TRUE);
   MatSetOption(qp.A, MAT_SPD, PETSC_TRUE);
 
-  check(MatCreateVecs(qp.A, &qp.b, &qp.f), "MatCreateVecs");
-  check(VecSet(qp.f, 0.0), "VecSet");
+  check_petsc(MatCreateVecs(qp.A, &qp.b, &qp.f), "MatCreateVecs");
+  check_petsc(VecSet(qp.f, 0.0), "VecSet");
   std::vector<PetscInt> rows;
   std::vector<PetscScalar> values;
   for (int k = 0; k < model.n_free; ++k)
@@ -451,11 +447,12 @@ DistributedBoundQp assemble_distributed_bound_qp(const DistributedModel& dm) {
       rows.push_back(dm.row_of_free[k]);
       values.push_back(f[k]);
     }
-  check(VecSetValues(qp.f, static_cast<PetscInt>(rows.size()), rows.data(), values.data(), ADD_VALUES), "VecSetValues");
-  check(VecAssemblyBegin(qp.f), "VecAssemblyBegin");
-  check(VecAssemblyEnd(qp.f), "VecAssemblyEnd");
+  check_petsc(VecSetValues(qp.f, static_cast<PetscInt>(rows.size()), rows.data(), values.data(), ADD_VALUES),
+              "VecSetValues");
+  check_petsc(VecAssemblyBegin(qp.f), "VecAssemblyBegin");
+  check_petsc(VecAssemblyEnd(qp.f), "VecAssemblyEnd");
   // b = Qᵀ f at the own candidate nodes (their columns are own rows).
-  check(VecCopy(qp.f, qp.b), "VecCopy");
+  check_petsc(VecCopy(qp.f, qp.b), "VecCopy");
   PetscScalar* b = nullptr;
   VecGetArray(qp.b, &b);
   double largest_f = 0;

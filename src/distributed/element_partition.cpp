@@ -14,7 +14,7 @@
 namespace contactqp::detail {
 namespace {
 
-void check(PetscErrorCode code, const char* what) {
+void check_coarse_partition(PetscErrorCode code, const char* what) {
   if (code) throw std::runtime_error(std::string("partitioning the coarse mesh: ") + what + ": " + error_text(code));
 }
 
@@ -63,8 +63,8 @@ std::vector<int> partition_elements(const Mesh& mesh, int parts) {
   dual_graph(mesh, offsets, neighbours);
   // MATMPIADJ takes arrays PETSc allocated.
   PetscInt *ia = nullptr, *ja = nullptr;
-  check(PetscMalloc1(offsets.size(), &ia), "PetscMalloc1");
-  check(PetscMalloc1(std::max<std::size_t>(neighbours.size(), 1), &ja), "PetscMalloc1");
+  check_coarse_partition(PetscMalloc1(offsets.size(), &ia), "PetscMalloc1");
+  check_coarse_partition(PetscMalloc1(std::max<std::size_t>(neighbours.size(), 1), &ja), "PetscMalloc1");
   std::copy(offsets.begin(), offsets.end(), ia);
   std::copy(neighbours.begin(), neighbours.end(), ja);
   Mat adjacency = nullptr;
@@ -92,7 +92,7 @@ std::vector<int> partition_elements(const Mesh& mesh, int parts) {
     PetscFree(ia);
     PetscFree(ja);
   }
-  check(code, step);
+  check_coarse_partition(code, step);
   return part;
 }
 

@@ -11,10 +11,6 @@
 namespace contactqp::detail {
 namespace {
 
-void check(PetscErrorCode code, const char* what) {
-  if (code) throw std::runtime_error(std::string(what) + ": " + error_text(code));
-}
-
 // `width` entries of `base` as one unit of the SF (a node's entries travel together).
 struct Unit {
   MPI_Datatype type = MPI_DATATYPE_NULL;
@@ -57,10 +53,10 @@ void SharedNodes::combine(void* values, int width, MPI_Datatype type, MPI_Op op)
   // For a maximum or an or they may start from anything the owner has; its own leaf is in it.
   std::vector<char> roots(bytes * n_owned_, 0);
   if (op != MPI_SUM) std::memcpy(roots.data(), values, roots.size());
-  check(PetscSFReduceBegin(sf_, unit.type, values, roots.data(), op), "PetscSFReduceBegin");
-  check(PetscSFReduceEnd(sf_, unit.type, values, roots.data(), op), "PetscSFReduceEnd");
-  check(PetscSFBcastBegin(sf_, unit.type, roots.data(), values, MPI_REPLACE), "PetscSFBcastBegin");
-  check(PetscSFBcastEnd(sf_, unit.type, roots.data(), values, MPI_REPLACE), "PetscSFBcastEnd");
+  check_petsc(PetscSFReduceBegin(sf_, unit.type, values, roots.data(), op), "PetscSFReduceBegin");
+  check_petsc(PetscSFReduceEnd(sf_, unit.type, values, roots.data(), op), "PetscSFReduceEnd");
+  check_petsc(PetscSFBcastBegin(sf_, unit.type, roots.data(), values, MPI_REPLACE), "PetscSFBcastBegin");
+  check_petsc(PetscSFBcastEnd(sf_, unit.type, roots.data(), values, MPI_REPLACE), "PetscSFBcastEnd");
 }
 
 void SharedNodes::sum(double* values, int width) const { combine(values, width, MPI_DOUBLE, MPI_SUM); }
@@ -72,15 +68,15 @@ void SharedNodes::from_owner(double* values, int width) const {
   const Unit unit(width, MPI_DOUBLE);
   // Owned nodes are local nodes 0 … n_owned − 1, so the owner's entries are the roots' data.
   std::vector<double> roots(values, values + static_cast<std::size_t>(width) * n_owned_);
-  check(PetscSFBcastBegin(sf_, unit.type, roots.data(), values, MPI_REPLACE), "PetscSFBcastBegin");
-  check(PetscSFBcastEnd(sf_, unit.type, roots.data(), values, MPI_REPLACE), "PetscSFBcastEnd");
+  check_petsc(PetscSFBcastBegin(sf_, unit.type, roots.data(), values, MPI_REPLACE), "PetscSFBcastBegin");
+  check_petsc(PetscSFBcastEnd(sf_, unit.type, roots.data(), values, MPI_REPLACE), "PetscSFBcastEnd");
 }
 
 void SharedNodes::from_owner(int* values, int width) const {
   const Unit unit(width, MPI_INT);
   std::vector<int> roots(values, values + static_cast<std::size_t>(width) * n_owned_);
-  check(PetscSFBcastBegin(sf_, unit.type, roots.data(), values, MPI_REPLACE), "PetscSFBcastBegin");
-  check(PetscSFBcastEnd(sf_, unit.type, roots.data(), values, MPI_REPLACE), "PetscSFBcastEnd");
+  check_petsc(PetscSFBcastBegin(sf_, unit.type, roots.data(), values, MPI_REPLACE), "PetscSFBcastBegin");
+  check_petsc(PetscSFBcastEnd(sf_, unit.type, roots.data(), values, MPI_REPLACE), "PetscSFBcastEnd");
 }
 
 }  // namespace contactqp::detail

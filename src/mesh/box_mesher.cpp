@@ -8,11 +8,10 @@
 #include <string>
 
 #include "gmsh_model.hpp"
+#include "qp/pi.hpp"
 
 namespace contactqp::detail {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The geometry is meshed in units of the height and scaled afterwards (as the rectangle is),
 // so a scaled scene has exactly the scaled mesh (lengths rounded: see unit_length).

@@ -11,7 +11,7 @@ namespace {
 
 std::mutex gmsh_mutex;
 
-std::string type_name(int type) {
+std::string gmsh_type_name(int type) {
   std::string name;
   int dim, order, n_nodes, n_primary;
   std::vector<double> local;
@@ -45,8 +45,8 @@ void elements_by_type(int type, int entity, std::vector<std::size_t>& tags, std:
     int element_type;
     gmsh::model::mesh::getElement(tag, element_type, element_nodes);
     if (element_type != type)
-      throw std::runtime_error("element " + std::to_string(tag) + " is a " + type_name(element_type) + " among " +
-                               type_name(type) + " elements: use one order");
+      throw std::runtime_error("element " + std::to_string(tag) + " is a " + gmsh_type_name(element_type) + " among " +
+                               gmsh_type_name(type) + " elements: use one order");
     nodes.insert(nodes.end(), element_nodes.begin(), element_nodes.end());
   }
 }

@@ -7,10 +7,11 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "qp/pi.hpp"
+
 namespace contactqp::detail {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Area of an equilateral triangle of side h is kTriangleArea · h².
 constexpr double kTriangleArea = 0.4330127018922193;
 // Volume of a regular tetrahedron of edge h is kTetrahedronVolume · h³ (h³ / (6√2)).

@@ -7,12 +7,11 @@
 
 #include "gmsh_model.hpp"
 #include "graded_size.hpp"
+#include "qp/pi.hpp"
 #include "refine.hpp"
 
 namespace contactqp::detail {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 GradedSize unit_sizes(const HalfDiscMeshRequest& request) {
   return {request.size / request.radius, request.contact_size / request.radius, request.grading};

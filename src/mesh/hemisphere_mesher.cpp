@@ -7,12 +7,11 @@
 #include <cstdio>
 
 #include "gmsh_model.hpp"
+#include "qp/pi.hpp"
 #include "refine.hpp"
 
 namespace contactqp::detail {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Meshed in units of R and scaled afterwards (as the half disc is): the mesh of a scaled
 // scene is then exactly the scaled mesh (Gmsh's geometric tolerances are absolute; lengths

@@ -7,7 +7,7 @@
 namespace contactqp::detail {
 namespace {
 
-Mesh split_once(const Mesh& coarse, const SnapToBoundary& snap, NodeParents* parents) {
+Mesh split_triangles_once(const Mesh& coarse, const SnapToBoundary& snap, NodeParents* parents) {
   Mesh fine;
   fine.dim = 2;
   fine.order = 1;
@@ -54,7 +54,7 @@ Mesh split_once(const Mesh& coarse, const SnapToBoundary& snap, NodeParents* par
 Mesh refine_triangles(const Mesh& mesh, int times, int order, const SnapToBoundary& snap, NodeParents* parents) {
   if (mesh.dim != 2 || mesh.order != 1) throw std::runtime_error("refine_triangles: needs a mesh of 3-node triangles");
   Mesh refined = mesh;
-  for (int k = 0; k < times; ++k) refined = split_once(refined, snap, parents);
+  for (int k = 0; k < times; ++k) refined = split_triangles_once(refined, snap, parents);
   // 6-node triangles: vertices, then the mid-sides 01, 12, 20.
   if (order == 2)
     refined = with_mid_edge_nodes(refined, {{0, 1}, {1, 2}, {2, 0}},

@@ -36,7 +36,7 @@ void list_face_nodes(const std::string& name, const BoundaryFace& face, EdgeNode
   }
 }
 
-Mesh split_once(const Mesh& coarse, const SnapToBoundary& snap, NodeParents* parents) {
+Mesh split_tetrahedra_once(const Mesh& coarse, const SnapToBoundary& snap, NodeParents* parents) {
   Mesh fine;
   fine.dim = 3;
   fine.order = 1;
@@ -99,7 +99,7 @@ Mesh refine_tetrahedra(const Mesh& mesh, int times, int order, const SnapToBound
   if (mesh.dim != 3 || mesh.order != 1)
     throw std::runtime_error("refine_tetrahedra: needs a mesh of 4-node tetrahedra");
   Mesh refined = mesh;
-  for (int k = 0; k < times; ++k) refined = split_once(refined, snap, parents);
+  for (int k = 0; k < times; ++k) refined = split_tetrahedra_once(refined, snap, parents);
   if (order == 2) {
     std::vector<std::array<int, 2>> edges;
     for (const auto& edge : kEdges) edges.push_back({edge[0], edge[1]});

@@ -14,11 +14,10 @@
 #include "mesh/hemisphere_mesher.hpp"
 #include "mesh/rectangle_mesher.hpp"
 #include "model_parts.hpp"
+#include "qp/pi.hpp"
 
 namespace contactqp::detail {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A boundary curve x(t), t ∈ [t0, t1], with its outward unit normal.
 struct Curve {

@@ -16,10 +16,7 @@
 namespace contactqp::detail {
 namespace {
 
-// The inner rule of the PETSc solver of K (docs/linear-solvers.md): ‖r‖₂ ≤ 1e-3 · tol · F, so
-// that stationarity stays a tenth of tol (its round-off floor: ksp_helpers.hpp).
-constexpr double kInnerFraction = 1e-3;
-constexpr PetscInt kMaxKrylovIterations = 10000;
+// The inner rule and its round-off floor: kInnerFraction and kRoundOff, ksp_helpers.hpp.
 // A loose step reduces its own initial residual tenfold (never below the final rule): the
 // active set's next guess needs the step's direction, not its digits. Measured on the spheres:
 // 2–4 CG iterations a step, against 4–12 with a target tied to the KKT residual.

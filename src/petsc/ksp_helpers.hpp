@@ -14,6 +14,14 @@
 
 namespace contactqp::detail {
 
+// The inner stopping rule (docs/linear-solvers.md): ‖b − A x‖₂ ≤ kInnerFraction · tol · ‖b‖∞.
+// The certificate's stationarity is ‖Ku − f + Bᵀλ‖∞ / F with F ≥ max(‖f‖∞, ‖Bᵀλ‖∞), and a
+// backend's right-hand side b = f − Bᵀλ has ‖b‖∞ ≤ 2F; with ‖r‖∞ ≤ ‖r‖₂ the solve leaves a
+// stationarity of at most 2 · kInnerFraction · tol = tol / 10, so the certificate holds at tol.
+inline constexpr double kInnerFraction = 1e-3;
+// Iterations of one KSP solve before it counts as not converging (-ksp_max_it overrides).
+inline constexpr PetscInt kMaxKrylovIterations = 10000;
+
 // Round-off: a residual this small relative to ‖A‖∞‖x‖∞ is as good as a backward-stable direct
 // solve gets, whatever the rule asks (CG then stagnates instead of converging).
 constexpr double kRoundOff = 100 * 2.220446049250313e-16;

@@ -32,9 +32,7 @@
 namespace contactqp::detail {
 namespace {
 
-// The inner stopping rule of petsc_solver.cpp (docs/linear-solvers.md): ‖r‖₂ ≤ 1e-3 · tol · F,
-// so that stationarity stays a tenth of tol; the round-off floor as there.
-constexpr double kInnerFraction = 1e-3;
+// The inner stopping rule and the round-off floor are those of ksp_helpers.hpp.
 // Inexact steps (pdas): while the active set is still changing, a step's KSP stops at this
 // fraction of the previous step's relative KKT residual (times the same force scale), never
 // below the final rule; the first step, whose only use is a first active set, at 1e-2 of F.
@@ -44,13 +42,12 @@ constexpr double kLooseFraction = 1e-2;
 // than this: a fresh GAMG takes 20–40 for ten digits on the shipped scenes, and a kept one on
 // hertz-sphere-large.json 166 over all its 14 steps.
 constexpr PetscInt kRebuildIterations = 200;
-constexpr PetscInt kMaxKrylovIterations = 10000;
 
 struct PetscFailure {
   std::string message;
 };
 
-void check(PetscErrorCode code, const char* what) {
+void check_bound_qp(PetscErrorCode code, const char* what) {
   if (code) throw PetscFailure{std::string(what) + ": " + error_text(code)};
 }
 
@@ -116,13 +113,14 @@ struct Work {
 };
 
 void assemble(Work& work, const BoundQp& problem) {
-  check(owned_rows(work.n, &work.first, &work.end), "PetscSplitOwnership");
+  check_bound_qp(owned_rows(work.n, &work.first, &work.end), "PetscSplitOwnership");
   const PetscInt local_rows = work.end - work.first;
-  check(MatCreate(PETSC_COMM_WORLD, &work.A), "MatCreate");
-  check(MatSetSizes(work.A, local_rows, local_rows, work.n, work.n), "MatSetSizes");
-  check(MatSetType(work.A, MATAIJ), "MatSetType");
+  check_bound_qp(MatCreate(PETSC_COMM_WORLD, &work.A), "MatCreate");
+  check_bound_qp(MatSetSizes(work.A, local_rows, local_rows, work.n, work.n), "MatSetSizes");
+  check_bound_qp(MatSetType(work.A, MATAIJ), "MatSetType");
   const char* step = "";
-  check(fill_matrix(work.A, problem.A, problem.A_is_rank_share, work.order, work.first, work.end, &step), step);
+  check_bound_qp(fill_matrix(work.A, problem.A, problem.A_is_rank_share, work.order, work.first, work.end, &step),
+                 step);
   MatNorm(work.A, NORM_INFINITY, &work.A_norm);
   MatSetOption(work.A, MAT_SYMMETRIC, PETSC_TRUE);
   MatSetOption(work.A, MAT_SPD, PETSC_TRUE);
@@ -140,14 +138,14 @@ void assemble(Work& work, const BoundQp& problem) {
     const PetscErrorCode code = MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(vectors.size()),
                                                    vectors.data(), &work.modes);
     for (Vec& v : vectors) VecDestroy(&v);
-    check(code, "MatNullSpaceCreate");
-    check(MatSetNearNullSpace(work.A, work.modes), "MatSetNearNullSpace");
+    check_bound_qp(code, "MatNullSpaceCreate");
+    check_bound_qp(MatSetNearNullSpace(work.A, work.modes), "MatSetNearNullSpace");
   }
   MatCreateVecs(work.A, &work.x, &work.rhs);
   VecDuplicate(work.x, &work.r);
   VecDuplicate(work.x, &work.b);
   work.set(work.b, problem.b);
-  check(VecScatterCreateToAll(work.x, &work.to_all, &work.x_all), "VecScatterCreateToAll");
+  check_bound_qp(VecScatterCreateToAll(work.x, &work.to_all, &work.x_all), "VecScatterCreateToAll");
 }
 
 // A phase boundary: every rank learns whether any rank failed, and the lowest failing rank's
@@ -196,8 +194,8 @@ double inf_norm(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCo
 // The primal-dual active-set loop.
 void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& options, BoundQpResult& result) {
   const int m = static_cast<int>(problem.bounded.size());
-  check(MatDuplicate(work.A, MAT_COPY_VALUES, &work.W), "MatDuplicate");
-  check(KSPCreate(PETSC_COMM_WORLD, &work.ksp), "KSPCreate");
+  check_bound_qp(MatDuplicate(work.A, MAT_COPY_VALUES, &work.W), "MatDuplicate");
+  check_bound_qp(KSPCreate(PETSC_COMM_WORLD, &work.ksp), "KSPCreate");
   KSPSetType(work.ksp, KSPCG);
   PC pc = nullptr;
   KSPGetPC(work.ksp, &pc);
@@ -214,13 +212,13 @@ void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& option
   KSPSetOperators(work.ksp, work.W, work.W);
   if (PetscErrorCode code = KSPSetFromOptions(work.ksp)) {
     work.options_error = true;
-    check(code, "KSPSetFromOptions");
+    check_bound_qp(code, "KSPSetFromOptions");
   }
   KSPSetInitialGuessNonzero(work.ksp, PETSC_TRUE);
 
   // c_i = A_ii: the semismooth Newton step's weight, in the units that make μ + c (v − upper)
   // a force.
-  check(MatGetDiagonal(work.A, work.r), "MatGetDiagonal");
+  check_bound_qp(MatGetDiagonal(work.A, work.r), "MatGetDiagonal");
   const Eigen::VectorXd diagonal = work.gather(work.r);
   const double b_norm = inf_norm(problem.b);
   // The value on the diagonal of a fixed row: the mean of A's diagonal there, so that the
@@ -240,7 +238,7 @@ void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& option
   for (int k = 1;; ++k) {
     seen.insert(active);
     // The system of this active set: v_i = upper_i on the active bounds, A v = b on the rest.
-    check(MatCopy(work.A, work.W, SAME_NONZERO_PATTERN), "MatCopy");
+    check_bound_qp(MatCopy(work.A, work.W, SAME_NONZERO_PATTERN), "MatCopy");
     std::vector<PetscInt> rows;
     Eigen::VectorXd guess = v;
     for (int i = 0; i < m; ++i)
@@ -250,27 +248,28 @@ void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& option
         if (row >= work.first && row < work.end) rows.push_back(row);
       }
     work.set(work.x, guess);
-    check(VecCopy(work.b, work.rhs), "VecCopy");
-    check(MatZeroRowsColumns(work.W, static_cast<PetscInt>(rows.size()), rows.data(), fixed_diagonal, work.x, work.rhs),
-          "MatZeroRowsColumns");
-    if (work.modes) check(MatSetNearNullSpace(work.W, work.modes), "MatSetNearNullSpace");
-    check(KSPSetOperators(work.ksp, work.W, work.W), "KSPSetOperators");
+    check_bound_qp(VecCopy(work.b, work.rhs), "VecCopy");
+    check_bound_qp(
+        MatZeroRowsColumns(work.W, static_cast<PetscInt>(rows.size()), rows.data(), fixed_diagonal, work.x, work.rhs),
+        "MatZeroRowsColumns");
+    if (work.modes) check_bound_qp(MatSetNearNullSpace(work.W, work.modes), "MatSetNearNullSpace");
+    check_bound_qp(KSPSetOperators(work.ksp, work.W, work.W), "KSPSetOperators");
     // The preconditioner of an earlier step's matrix serves the later ones (reuse_preconditioner):
     // they differ from it only in the fixed rows, and CG converges with any SPD preconditioner.
     // It is set up afresh after a solve with it that needed more than kRebuildIterations, or to
     // repeat a solve that failed with it. A rule by counts, not by time: the same problem takes
     // the same steps on every run, in any units.
     const bool keep = options.reuse_preconditioner && result.preconditioner_setups > 0 && !rebuild;
-    check(KSPSetReusePreconditioner(work.ksp, keep ? PETSC_TRUE : PETSC_FALSE), "KSPSetReusePreconditioner");
+    check_bound_qp(KSPSetReusePreconditioner(work.ksp, keep ? PETSC_TRUE : PETSC_FALSE), "KSPSetReusePreconditioner");
     if (!keep) {
       ++result.preconditioner_setups;
-      check(KSPSetUp(work.ksp), "KSPSetUp");
+      check_bound_qp(KSPSetUp(work.ksp), "KSPSetUp");
     }
     const double force = std::max(b_norm, inf_norm(mu));
     const double final_target = force > 0 ? kInnerFraction * options.tol * force : kInnerFraction * options.tol;
     const bool solved_tight = tight || !options.inexact;
     work.target = solved_tight ? final_target : std::max(final_target, kLooseFraction * previous_residual * force);
-    check(KSPSolve(work.ksp, work.rhs, work.x), "KSPSolve");
+    check_bound_qp(KSPSolve(work.ksp, work.rhs, work.x), "KSPSolve");
     work.petsc_bytes = std::max(work.petsc_bytes, petsc_bytes(work));
     PetscInt iterations = 0;
     KSPGetIterationNumber(work.ksp, &iterations);
@@ -292,7 +291,7 @@ void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& option
 
     // μ = b − A v on the active bounds (the force that holds them), 0 on the others.
     v = work.gather(work.x);
-    check(MatMult(work.A, work.x, work.r), "MatMult");
+    check_bound_qp(MatMult(work.A, work.x, work.r), "MatMult");
     const Eigen::VectorXd Av = work.gather(work.r);
     for (int i = 0; i < m; ++i) mu[i] = active[i] ? problem.b[problem.bounded[i]] - Av[problem.bounded[i]] : 0.0;
     if (!v.allFinite() || !mu.allFinite()) {
@@ -451,7 +450,7 @@ void solve_kept(Work& work, const BoundQp& problem, const BoundQpOptions& option
     input.column_vertex = &problem.coarse_vertex;
     input.vertex_row = &problem.coarse_row;
     input.block_size = problem.coarse_block_size;
-    check(coarse.create(input, work.order, work.first, work.end, work.A), "the P1 level");
+    check_bound_qp(coarse.create(input, work.order, work.first, work.end, work.A), "the P1 level");
     qp.coarse_interpolation = coarse.interpolation();
     qp.coarse_modes = coarse.modes();
     for (const auto& [row, i] : mine)
@@ -479,7 +478,7 @@ void solve_kept(Work& work, const BoundQp& problem, const BoundQpOptions& option
   bool options_error = false;
   if (PetscErrorCode code = solve_bound_pdas(qp, settings, &solved, &options_error)) {
     work.options_error = options_error;
-    check(code, options_error ? "the preconditioner's set-up" : "the active-set loop");
+    check_bound_qp(code, options_error ? "the preconditioner's set-up" : "the active-set loop");
   }
   result.status = solved.status;
   result.message = solved.message;
@@ -509,8 +508,8 @@ void solve_kept(Work& work, const BoundQp& problem, const BoundQpOptions& option
   state->end = work.end;
   state->n = work.n;
   state->method = "cg + " + solved.multigrid.method + " (the contact solve's hierarchy)";
-  check(MatCreateVecs(work.A, &state->x, &state->rhs), "MatCreateVecs");
-  check(VecScatterCreateToAll(state->x, &state->to_all, &state->x_all), "VecScatterCreateToAll");
+  check_bound_qp(MatCreateVecs(work.A, &state->x, &state->rhs), "MatCreateVecs");
+  check_bound_qp(VecScatterCreateToAll(state->x, &state->to_all, &state->x_all), "VecScatterCreateToAll");
   result.solver_of_A = std::make_shared<HierarchySolver>(state, 1.0);
 }
 
@@ -526,7 +525,7 @@ void solve_tao(Work& work, const BoundQp& problem, const BoundQpOptions& options
   work.set(work.upper, upper);
   work.set(work.x, Eigen::VectorXd(upper.cwiseMin(0.0)));
 
-  check(TaoCreate(PETSC_COMM_WORLD, &work.tao), "TaoCreate");
+  check_bound_qp(TaoCreate(PETSC_COMM_WORLD, &work.tao), "TaoCreate");
   TaoSetType(work.tao, TAOBNLS);
   TaoSetSolution(work.tao, work.x);
   TaoSetVariableBounds(work.tao, work.lower, work.upper);
@@ -537,9 +536,9 @@ void solve_tao(Work& work, const BoundQp& problem, const BoundQpOptions& options
   TaoSetMaximumIterations(work.tao, options.max_iterations);
   if (PetscErrorCode code = TaoSetFromOptions(work.tao)) {
     work.options_error = true;
-    check(code, "TaoSetFromOptions");
+    check_bound_qp(code, "TaoSetFromOptions");
   }
-  check(TaoSolve(work.tao), "TaoSolve");
+  check_bound_qp(TaoSolve(work.tao), "TaoSolve");
   work.petsc_bytes = petsc_bytes(work);  // A (TAO's own reduced matrices are not counted)
   TaoConvergedReason reason = TAO_CONTINUE_ITERATING;
   TaoGetConvergedReason(work.tao, &reason);
@@ -552,7 +551,7 @@ void solve_tao(Work& work, const BoundQp& problem, const BoundQpOptions& options
   Vec solution = nullptr;
   TaoGetSolution(work.tao, &solution);
   result.v = work.gather(solution);
-  check(MatMult(work.A, solution, work.r), "MatMult");
+  check_bound_qp(MatMult(work.A, solution, work.r), "MatMult");
   const Eigen::VectorXd Av = work.gather(work.r);
   Eigen::VectorXd mu(m);
   for (int i = 0; i < m; ++i) mu[i] = problem.b[problem.bounded[i]] - Av[problem.bounded[i]];

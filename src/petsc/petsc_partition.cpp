@@ -16,7 +16,7 @@ struct PartitionFailure {
   PetscErrorCode code;
 };
 
-void check(PetscErrorCode code, const char* what) {
+void check_partition(PetscErrorCode code, const char* what) {
   if (code) throw PartitionFailure{what, code};
 }
 
@@ -36,15 +36,15 @@ std::vector<int> partition_graph(const std::vector<long>& offsets, const std::ve
     // This rank's block of vertices, each with its neighbours but itself (MATMPIADJ takes the
     // arrays, allocated by PETSc).
     PetscInt local = PETSC_DECIDE, global = n, end = 0;
-    check(PetscSplitOwnership(PETSC_COMM_WORLD, &local, &global), "PetscSplitOwnership");
+    check_partition(PetscSplitOwnership(PETSC_COMM_WORLD, &local, &global), "PetscSplitOwnership");
     MPI_Scan(&local, &end, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
     const PetscInt first = end - local;
     PetscInt *ia = nullptr, *ja = nullptr;
     long edges = 0;
     for (PetscInt v = first; v < end; ++v)
       for (long k = offsets[v]; k < offsets[v + 1]; ++k) edges += neighbours[k] != v;
-    check(PetscMalloc1(local + 1, &ia), "PetscMalloc1");
-    check(PetscMalloc1(std::max(edges, 1L), &ja), "PetscMalloc1");
+    check_partition(PetscMalloc1(local + 1, &ia), "PetscMalloc1");
+    check_partition(PetscMalloc1(std::max(edges, 1L), &ja), "PetscMalloc1");
     ia[0] = 0;
     for (PetscInt v = first; v < end; ++v) {
       PetscInt count = ia[v - first];
@@ -52,16 +52,16 @@ std::vector<int> partition_graph(const std::vector<long>& offsets, const std::ve
         if (neighbours[k] != v) ja[count++] = neighbours[k];
       ia[v - first + 1] = count;
     }
-    check(MatCreateMPIAdj(PETSC_COMM_WORLD, local, n, ia, ja, nullptr, &adjacency), "MatCreateMPIAdj");
-    check(MatPartitioningCreate(PETSC_COMM_WORLD, &partitioning), "MatPartitioningCreate");
-    check(MatPartitioningSetAdjacency(partitioning, adjacency), "MatPartitioningSetAdjacency");
-    check(MatPartitioningSetNParts(partitioning, parts), "MatPartitioningSetNParts");
-    check(MatPartitioningSetType(partitioning, MATPARTITIONINGPTSCOTCH), "MatPartitioningSetType");
-    check(MatPartitioningSetFromOptions(partitioning), "MatPartitioningSetFromOptions");
-    check(MatPartitioningApply(partitioning, &mine), "MatPartitioningApply");
-    check(ISAllGather(mine, &all), "ISAllGather");
+    check_partition(MatCreateMPIAdj(PETSC_COMM_WORLD, local, n, ia, ja, nullptr, &adjacency), "MatCreateMPIAdj");
+    check_partition(MatPartitioningCreate(PETSC_COMM_WORLD, &partitioning), "MatPartitioningCreate");
+    check_partition(MatPartitioningSetAdjacency(partitioning, adjacency), "MatPartitioningSetAdjacency");
+    check_partition(MatPartitioningSetNParts(partitioning, parts), "MatPartitioningSetNParts");
+    check_partition(MatPartitioningSetType(partitioning, MATPARTITIONINGPTSCOTCH), "MatPartitioningSetType");
+    check_partition(MatPartitioningSetFromOptions(partitioning), "MatPartitioningSetFromOptions");
+    check_partition(MatPartitioningApply(partitioning, &mine), "MatPartitioningApply");
+    check_partition(ISAllGather(mine, &all), "ISAllGather");
     const PetscInt* indices = nullptr;
-    check(ISGetIndices(all, &indices), "ISGetIndices");
+    check_partition(ISGetIndices(all, &indices), "ISGetIndices");
     for (int v = 0; v < n; ++v) part[v] = static_cast<int>(indices[v]);
     ISRestoreIndices(all, &indices);
   } catch (const PartitionFailure&) {

@@ -10,6 +10,7 @@
 #include <mutex>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,10 @@ namespace contactqp::detail {
 
 // The text of a PETSc error code, with the specific message of the last error.
 std::string error_text(PetscErrorCode code);
+// Throws std::runtime_error("<what>: <error_text>") when a PETSc call failed.
+inline void check_petsc(PetscErrorCode code, const char* what) {
+  if (code) throw std::runtime_error(std::string(what) + ": " + error_text(code));
+}
 // The names in an options string ("-ksp_type cg -pc_type gamg" -> ksp_type, pc_type).
 std::vector<std::string> option_names(const std::string& text);
 std::string environment_options();  // PETSC_OPTIONS, or ""

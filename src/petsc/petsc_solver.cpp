@@ -34,14 +34,6 @@
 namespace contactqp::detail {
 namespace {
 
-// The inner stopping rule (docs/linear-solvers.md): ‖b − A x‖₂ ≤ kInnerFraction · tol · ‖b‖∞.
-// The certificate's stationarity is ‖Ku − f + Bᵀλ‖∞ / F with F ≥ max(‖f‖∞, ‖Bᵀλ‖∞), and a
-// backend's right-hand side b = f − Bᵀλ has ‖b‖∞ ≤ 2F; with ‖r‖∞ ≤ ‖r‖₂ the solve leaves a
-// stationarity of at most 2 · kInnerFraction · tol = tol / 10, so the certificate holds at tol.
-constexpr double kInnerFraction = 1e-3;
-// Iterations of one KSP solve before it counts as not converging (-ksp_max_it overrides).
-constexpr PetscInt kMaxKrylovIterations = 10000;
-
 class PetscSolver final : public LinearSolver {
  public:
   struct Impl;

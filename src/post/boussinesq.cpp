@@ -6,11 +6,10 @@
 #include <limits>
 
 #include "contactqp/post.hpp"
+#include "qp/pi.hpp"
 
 namespace contactqp {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Beyond this fraction of the radius the pressure's rim singularity dominates the mesh error.
 constexpr double kShapeReach = 0.8;

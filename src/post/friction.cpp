@@ -6,11 +6,10 @@
 
 #include "contact/contact.hpp"
 #include "contactqp/post.hpp"
+#include "qp/pi.hpp"
 
 namespace contactqp {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A loaded row slips when it moved in this step — its slip above this fraction of the largest
 // row's (a stuck row's slip is the solver's tolerance: 3e-8 of it on

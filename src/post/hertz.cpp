@@ -12,11 +12,10 @@
 
 #include "contact/contact.hpp"
 #include "contactqp/post.hpp"
+#include "qp/pi.hpp"
 
 namespace contactqp {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Gauss–Legendre, 8 points on [−1, 1].
 const double kNodes[] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,

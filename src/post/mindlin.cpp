@@ -6,11 +6,11 @@
 #include <cmath>
 
 #include "contactqp/post.hpp"
+#include "qp/pi.hpp"
 
 namespace contactqp {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kNoShear = 0.01;  // Q/(μP) below this: a press step, q measured against μp
 
 double shear_modulus(const Material& m) { return m.E / (2 * (1 + m.nu)); }

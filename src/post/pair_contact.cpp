@@ -8,11 +8,10 @@
 
 #include "contact/contact.hpp"
 #include "contactqp/post.hpp"
+#include "qp/pi.hpp"
 
 namespace contactqp {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The curvature of a generated body's boundary: 1/R for a half disc's arc or a hemisphere's
 // surface, 0 for a flat side; nullopt for a mesh body (not fitted yet) or a curved top.

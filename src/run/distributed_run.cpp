@@ -1,33 +1,24 @@
 // The registered distributed runs (distributed_run.hpp).
 #include "run/distributed_run.hpp"
 
-#include <mutex>
 #include <stdexcept>
 #include <vector>
 
 #include "qp/builtins.hpp"
+#include "qp/registrations.hpp"
 
 namespace contactqp::detail {
 namespace {
 
-struct Registered {
-  std::mutex mutex;
-  std::vector<DistributedRun> runs;
-};
-
-Registered& registered() {
-  static Registered all;
+Registrations<DistributedRun>& distributed_runs() {
+  static Registrations<DistributedRun> all;
   return all;
 }
 
 // The first registered run that takes the scene, or null.
 const DistributedRun* taker(const Scene& scene, const RunOptions& options, std::vector<DistributedRun>& runs) {
   register_builtins();
-  {
-    Registered& r = registered();
-    std::lock_guard<std::mutex> lock(r.mutex);
-    runs = r.runs;
-  }
+  runs = distributed_runs().copy();
   for (const DistributedRun& run : runs)
     if (run.takes(scene, options)) return &run;
   return nullptr;
@@ -35,11 +26,7 @@ const DistributedRun* taker(const Scene& scene, const RunOptions& options, std::
 
 }  // namespace
 
-void register_distributed_run(DistributedRun run) {
-  Registered& r = registered();
-  std::lock_guard<std::mutex> lock(r.mutex);
-  r.runs.push_back(std::move(run));
-}
+void register_distributed_run(DistributedRun run) { distributed_runs().add(std::move(run)); }
 
 bool runs_distributed(const Scene& scene, const RunOptions& options) {
   std::vector<DistributedRun> runs;

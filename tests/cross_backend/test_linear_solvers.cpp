@@ -37,12 +37,7 @@ SolveOptions options_with(Backend backend, LinearSolverKind kind, double tol, co
   return options;
 }
 
-QuadraticProgram scene_qp(const std::string& relative, const std::string& patch = "{}") {
-  Model model = build_model(parse_scene(patched_scene(relative, patch)));
-  return assemble_qp(model);
-}
-
-bool petsc_built_in() { return linear_solver_available(LinearSolverKind::Petsc); }
+bool petsc_solver_built_in() { return linear_solver_available(LinearSolverKind::Petsc); }
 
 }  // namespace
 
@@ -77,7 +72,7 @@ TEST_CASE("each solver of K holds a spring against a wall", "[cross_backend][lin
 
 TEST_CASE("with PETSc as the solver of K the backends give CHOLMOD's u on shipped scenes",
           "[cross_backend][linear_solver][hertz][heavy]") {
-  if (!petsc_built_in()) return;
+  if (!petsc_solver_built_in()) return;
   // hertz: the paper's problem; disc-in-vgroove (coarser at the contact, as test_scenes has
   // it, to keep the test short): two obstacles, nodes with a row for each; hertz-sphere (coarse
   // 4-node tetrahedra): 3D, GAMG with the six rigid-body modes.
@@ -115,7 +110,7 @@ TEST_CASE("with PETSc as the solver of K the backends give CHOLMOD's u on shippe
 TEST_CASE("the PETSc solver of K: divergence, unused and bad options, no leaks between solves",
           "[linear_solver][petsc]") {
   const QuadraticProgram qp = scene_qp("scenes/hertz.json");
-  if (!petsc_built_in()) {
+  if (!petsc_solver_built_in()) {
     CHECK_THROWS_WITH(solve(qp, options_with(Backend::Uzawa, LinearSolverKind::Petsc, 1e-8)),
                       Catch::Matchers::Contains("linear_solver = petsc") && Catch::Matchers::Contains("not built"));
     return;
@@ -157,7 +152,7 @@ TEST_CASE("the PETSc solver of K: divergence, unused and bad options, no leaks b
 TEST_CASE("the CLI passes PETSc options through, reads PETSC_OPTIONS, and ends PETSc on every exit",
           "[linear_solver][petsc][cli]") {
   const std::string scene = source_path("scenes/hertz.json");
-  if (!petsc_built_in()) {
+  if (!petsc_solver_built_in()) {
     const CliRun run = run_cli("solve " + scene + " --linear-solver petsc");
     CHECK(run.exit_status == 2);
     CHECK_THAT(run.err, Catch::Matchers::Contains("not built"));

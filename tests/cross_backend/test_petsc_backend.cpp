@@ -22,15 +22,7 @@ using namespace contactqp::testing;
 
 namespace {
 
-bool petsc_built_in() { return backend_available(Backend::Petsc); }
-
-// A patched scene is parsed from text, so it cannot name a Gmsh file relative to itself:
-// unpatched scenes (strip-liftoff's strip.geo) are loaded from their own directory.
-QuadraticProgram scene_qp(const std::string& relative, const std::string& patch = "{}") {
-  Model model = build_model(patch == std::string("{}") ? load_scene(source_path(relative))
-                                                       : parse_scene(patched_scene(relative, patch)));
-  return assemble_qp(model);
-}
+bool petsc_backend_built_in() { return backend_available(Backend::Petsc); }
 
 SolveOptions petsc_options(double tol, const std::string& petsc = "", const std::string& method = "") {
   SolveOptions options = options_for(Backend::Petsc, tol);
@@ -42,7 +34,7 @@ SolveOptions petsc_options(double tol, const std::string& petsc = "", const std:
 }  // namespace
 
 TEST_CASE("petsc agrees with active_set on the shipped scenes, 2D and 3D", "[cross_backend][petsc][hertz]") {
-  if (!petsc_built_in()) return;
+  if (!petsc_backend_built_in()) return;
   // disc-in-vgroove: two obstacles, nodes with a row for each (a per-node change of variables
   // that is not orthogonal); block-on-circle and strip-liftoff: rows that open; hertz-sphere:
   // 3D, six rigid-body modes (coarser, order 1, to keep the test short); hertz-order2: 6-node
@@ -97,7 +89,7 @@ TEST_CASE("petsc agrees with active_set on the shipped scenes, 2D and 3D", "[cro
 
 TEST_CASE("petsc's alternative, TAO's bounded Newton on the same bound form, gives the same answer",
           "[cross_backend][petsc][hertz]") {
-  if (!petsc_built_in()) return;
+  if (!petsc_backend_built_in()) return;
   const QuadraticProgram qp = scene_qp("scenes/hertz.json");
   const SolveResult reference = solve(qp, options_for(Backend::ActiveSet, 1e-10));
   const SolveResult r = solve(qp, petsc_options(1e-10, "", "tao"));
@@ -110,7 +102,7 @@ TEST_CASE("petsc's alternative, TAO's bounded Newton on the same bound form, giv
 
 TEST_CASE("the petsc backend: divergence, unused and bad options, unavailability", "[petsc]") {
   const QuadraticProgram qp = scene_qp("scenes/hertz.json");
-  if (!petsc_built_in()) {
+  if (!petsc_backend_built_in()) {
     CHECK_THROWS_WITH(solve(qp, petsc_options(1e-8)), Catch::Matchers::Contains("not built"));
     return;
   }
@@ -141,7 +133,7 @@ TEST_CASE("the CLI: --backend petsc, and a bad --linear-solver is bad input", "[
   CHECK(bad.exit_status == 2);
   CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
   CHECK_THAT(bad.err, Catch::Matchers::Contains("--linear-solver") && Catch::Matchers::Contains("mumps"));
-  if (!petsc_built_in()) return;
+  if (!petsc_backend_built_in()) return;
   const CliRun run = run_cli("solve " + scene + " --backend petsc --tol 1e-10");
   CHECK(run.exit_status == 0);
   CHECK_THAT(run.out, Catch::Matchers::Contains("Krylov iterations"));
@@ -149,7 +141,7 @@ TEST_CASE("the CLI: --backend petsc, and a bad --linear-solver is bad input", "[
 
 TEST_CASE("K in rank shares: the shares of two ranks sum to the whole K, f stays whole, the rows are a permutation",
           "[petsc][mpi]") {
-  if (!petsc_built_in()) return;
+  if (!petsc_backend_built_in()) return;
   // On one process the two shares are assembled one after the other, the second on the rows
   // the first chose: what the two ranks of `mpirun -n 2` hold after their one collective
   // partition.
@@ -179,7 +171,7 @@ TEST_CASE("K in rank shares: the shares of two ranks sum to the whole K, f stays
 }
 
 TEST_CASE("partition_graph splits a path of 1000 vertices into two halves with one edge between them", "[petsc][mpi]") {
-  if (!petsc_built_in()) return;
+  if (!petsc_backend_built_in()) return;
   const int n = 1000;
   std::vector<long> offsets{0};
   std::vector<int> neighbours;

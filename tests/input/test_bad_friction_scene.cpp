@@ -14,10 +14,6 @@ using namespace contactqp::testing;
 
 namespace {
 
-struct BadScene {
-  std::string text, names;
-};
-
 // A push named for the steps, and a second load that the steps may name.
 const char* const kNamedLoads =
     R"("load": [{"name": "push", "type": "displacement", "boundary": "top", "value": [null, -0.016]},
@@ -27,7 +23,7 @@ std::string with_loads(const std::string& rest) {
   return patched_scene("scenes/hertz.json", std::string("{") + kNamedLoads + ", " + rest + "}");
 }
 
-std::vector<BadScene> bad_scenes() {
+std::vector<BadScene> bad_friction_scenes() {
   auto patch = [](const char* p) { return patched_scene("scenes/hertz.json", p); };
   auto pair = [](const char* p) { return patched_scene("scenes/two-cylinders.json", p); };
   auto sphere = [](const char* p) { return patched_scene("scenes/hertz-sphere.json", p); };
@@ -88,7 +84,7 @@ std::vector<BadScene> bad_scenes() {
 }  // namespace
 
 TEST_CASE("bad friction and load steps name their field", "[input][friction]") {
-  for (const BadScene& bad : bad_scenes()) {
+  for (const BadScene& bad : bad_friction_scenes()) {
     CAPTURE(bad.text.substr(0, 300), bad.names);
     CHECK_THROWS_WITH(parse_scene(bad.text), Catch::Matchers::Contains(bad.names));
   }
@@ -99,7 +95,7 @@ TEST_CASE("bad friction and load steps exit 2 from the CLI and write nothing", "
   const std::string out = directory.path("out.json"), csv = directory.path("p.csv"), vtu = directory.path("o.vtu");
   // One of each kind (friction, a misspelt key, steps, each symmetry): the test above checks every
   // message, and each CLI run costs a process start (0.5 s or more on a loaded machine).
-  const std::vector<BadScene> all = bad_scenes();
+  const std::vector<BadScene> all = bad_friction_scenes();
   for (const size_t k : {size_t{0}, size_t{4}, size_t{13}, size_t{24}, size_t{25}}) {
     const BadScene& bad = all.at(k);
     CAPTURE(bad.names);

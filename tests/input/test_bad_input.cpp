@@ -19,12 +19,7 @@ using namespace contactqp::testing;
 
 namespace {
 
-struct BadScene {
-  std::string text;   // a whole scene
-  std::string names;  // what the one-line message must contain
-};
-
-std::vector<BadScene> bad_scenes() {
+std::vector<BadScene> bad_2d_scenes() {
   auto patch = [](const char* p) { return patched_scene("scenes/hertz.json", p); };
   return {
       {"{\"material\": ", "is not valid JSON"},
@@ -148,7 +143,7 @@ std::vector<BadScene> bad_scenes() {
 }  // namespace
 
 TEST_CASE("every bad scene names its field", "[input]") {
-  for (const BadScene& bad : bad_scenes()) {
+  for (const BadScene& bad : bad_2d_scenes()) {
     CAPTURE(bad.text.substr(0, 200), bad.names);
     CHECK_THROWS_WITH(parse_scene(bad.text), Catch::Matchers::Contains(bad.names));
   }
@@ -199,7 +194,7 @@ TEST_CASE("misspelled keys come with the nearest valid one", "[input]") {
 TEST_CASE("the CLI exits 2 with one line and writes nothing on bad input", "[input][cli]") {
   TemporaryDirectory directory;
   const std::string out = directory.path("out.json");
-  for (const BadScene& bad : bad_scenes()) {
+  for (const BadScene& bad : bad_2d_scenes()) {
     CAPTURE(bad.names);
     const std::string scene = directory.path("bad.json");
     std::ofstream(scene) << bad.text;

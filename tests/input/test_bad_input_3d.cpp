@@ -15,11 +15,6 @@ using namespace contactqp::testing;
 
 namespace {
 
-struct BadScene {
-  std::string text;   // a whole scene
-  std::string names;  // what the one-line message must contain
-};
-
 // Two tetrahedra in a Gmsh 2.2 file that disagree in orientation — (1 2 3 4) positive, (1 2 3 5)
 // negative, a tangled mesh that turning the volume as a whole cannot mend — with a face as a
 // physical surface.
@@ -70,7 +65,7 @@ $Elements
 $EndElements
 )";
 
-std::vector<BadScene> bad_scenes(const std::string& inverted_msh, const std::string& tet_msh) {
+std::vector<BadScene> bad_3d_scenes(const std::string& inverted_msh, const std::string& tet_msh) {
   auto patch = [](const std::string& p) { return patched_scene("scenes/hertz-sphere.json", p); };
   return {
       {patch(R"({"load": {"value": [null, -0.01]}})"), "load.value"},
@@ -123,7 +118,7 @@ TEST_CASE("bad 3D input: exit 2, one line naming the field or element, nothing w
   const std::string tet = directory.path("tet.msh");
   std::ofstream(tet) << kOneTet;
   int k = 0;
-  for (const BadScene& bad : bad_scenes(msh, tet)) {
+  for (const BadScene& bad : bad_3d_scenes(msh, tet)) {
     CAPTURE(bad.text, bad.names);
     const std::string scene = directory.path("scene" + std::to_string(k++) + ".json");
     std::ofstream(scene) << bad.text;

@@ -185,7 +185,7 @@ std::string patched_scene(const std::string& relative, const std::string& merge_
   return scene.dump(2);
 }
 
-SceneRun run_scene(const Scene& scene) {
+SceneRun solve_scene(const Scene& scene) {
   SceneRun run;
   run.model = build_model(scene);
   run.qp = assemble_qp(run.model);
@@ -195,8 +195,13 @@ SceneRun run_scene(const Scene& scene) {
   return run;
 }
 
-SceneRun run_scene(const std::string& relative, const std::string& merge_patch) {
-  return run_scene(parse_scene(patched_scene(relative, merge_patch), source_path(relative)));
+SceneRun solve_scene(const std::string& relative, const std::string& merge_patch) {
+  return solve_scene(parse_scene(patched_scene(relative, merge_patch), source_path(relative)));
+}
+
+QuadraticProgram scene_qp(const std::string& relative, const std::string& merge_patch) {
+  Model model = build_model(parse_scene(patched_scene(relative, merge_patch), source_path(relative)));
+  return assemble_qp(model);
 }
 
 }  // namespace contactqp::testing

@@ -72,6 +72,12 @@ extern const char* const kUnitSquareMsh;
 // R"({"material": {"E": 1e9}})") merges like JSON Merge Patch (RFC 7386).
 std::string patched_scene(const std::string& relative, const std::string& merge_patch);
 
+// A bad scene for the input tests: its whole text and what the one-line message must name.
+struct BadScene {
+  std::string text;   // a whole scene
+  std::string names;  // what the one-line message must contain
+};
+
 // A scene built, solved with its own solver options, and post-processed.
 struct SceneRun {
   Model model;
@@ -80,10 +86,13 @@ struct SceneRun {
   ContactSummary contact;
   std::vector<Reaction> reactions;
 };
-SceneRun run_scene(const Scene& scene);
+SceneRun solve_scene(const Scene& scene);
 
 // A shipped scene (relative to the source tree) with a JSON merge patch, parsed as if it
 // were in scenes/ (so its mesh file resolves), solved.
-SceneRun run_scene(const std::string& relative, const std::string& merge_patch = "{}");
+SceneRun solve_scene(const std::string& relative, const std::string& merge_patch = "{}");
+
+// The QP of a shipped scene with a JSON merge patch, parsed as if it were in scenes/.
+QuadraticProgram scene_qp(const std::string& relative, const std::string& merge_patch = "{}");
 
 }  // namespace contactqp::testing

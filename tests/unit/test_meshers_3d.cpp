@@ -21,6 +21,7 @@
 #include "mesh/half_disc_mesher.hpp"
 #include "mesh/hemisphere_mesher.hpp"
 #include "mesh_volume.hpp"
+#include "qp/pi.hpp"
 
 using namespace contactqp;
 using namespace contactqp::detail;
@@ -28,8 +29,6 @@ using contactqp::testing::isoparametric_volume;
 using contactqp::testing::total_volume;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A fresh directory under the system's temporary one, removed with its files.
 class ScratchDirectory {

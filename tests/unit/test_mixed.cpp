@@ -40,8 +40,8 @@ TEST_CASE("mixed: stresses are D_dev ε plus the element's mean stress", "[unit]
       "obstacle": {"type": "plane", "point": [0, 0], "normal": [0, 1]}})";
   nlohmann::json mixed = nlohmann::json::parse(block);
   mixed["body"]["formulation"] = "mixed";
-  const SceneRun a = run_scene(parse_scene(block));
-  const SceneRun b = run_scene(parse_scene(mixed.dump()));
+  const SceneRun a = solve_scene(parse_scene(block));
+  const SceneRun b = solve_scene(parse_scene(mixed.dump()));
   const NodalStress sa = nodal_stresses(a.model, full_displacement(a.model, a.result.u));
   const NodalStress sb = nodal_stresses(b.model, full_displacement(b.model, b.result.u));
   const double scale = sa.yy.cwiseAbs().maxCoeff();

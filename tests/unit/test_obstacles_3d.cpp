@@ -34,7 +34,7 @@ ObstacleSpec punch(Eigen::Vector3d center, Eigen::Vector3d axis, double radius) 
   return {"obstacle", o};
 }
 
-ObstacleSpec plane(Eigen::Vector3d point, Eigen::Vector3d normal) {
+ObstacleSpec plane_3d(Eigen::Vector3d point, Eigen::Vector3d normal) {
   PlaneObstacle o;
   o.point = point;
   o.normal = normal.normalized();
@@ -71,7 +71,7 @@ TEST_CASE("a flat punch: its face above the disc, the rim beyond it, the side be
 }
 
 TEST_CASE("the 3D normal is the gradient of the gap, for every 3D obstacle type", "[unit][obstacle][3d]") {
-  const ObstacleSpec obstacles[] = {plane({0, 0, 0.1}, {0.3, -0.2, 1}), sphere({0, -1, 0.2}, 1),
+  const ObstacleSpec obstacles[] = {plane_3d({0, 0, 0.1}, {0.3, -0.2, 1}), sphere({0, -1, 0.2}, 1),
                                     cylinder({0.1, 0, -1}, {1, 0.5, 0.2}, 0.7), punch({0, 0, 0}, {0.1, 0.2, 1}, 0.5)};
   const Eigen::Vector3d points[] = {
       {0.3, 0.7, 0.4}, {-0.4, 0.9, 1.1}, {1.2, 1.9, 0.3}, {0.05, 0.1, 1.4}, {0.9, 0.2, 0.3}};

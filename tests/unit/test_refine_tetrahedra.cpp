@@ -15,6 +15,7 @@
 #include "mesh/hemisphere_mesher.hpp"
 #include "mesh/refine.hpp"
 #include "mesh_volume.hpp"
+#include "qp/pi.hpp"
 
 using namespace contactqp;
 using namespace contactqp::detail;
@@ -22,8 +23,6 @@ using contactqp::testing::isoparametric_volume;
 using contactqp::testing::total_volume;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Eigen::Vector3d identity_snap(const std::string&, const Eigen::Vector3d& x) { return x; }
 

@@ -32,11 +32,11 @@ TEST_CASE("rotated() turns obstacles and load vectors, not prescribed components
 }
 
 TEST_CASE("Hertz turned by any angle: the same force, b and p0 within 1e-6", "[unit][transform][hertz]") {
-  const SceneRun base = run_scene("scenes/hertz.json");
+  const SceneRun base = solve_scene("scenes/hertz.json");
   const double angle = GENERATE(30.0, 137.5, -90.0, 1e-3);
   CAPTURE(angle);
   const SceneRun turned =
-      run_scene("scenes/hertz.json", R"({"transform": {"rotate_degrees": )" + std::to_string(angle) + "}}");
+      solve_scene("scenes/hertz.json", R"({"transform": {"rotate_degrees": )" + std::to_string(angle) + "}}");
   REQUIRE(turned.result.status == Status::Converged);
   CHECK(relative_error(turned.contact.total_force, base.contact.total_force) < 1e-6);
   CHECK(relative_error(turned.contact.half_width, base.contact.half_width) < 1e-6);
@@ -61,10 +61,10 @@ TEST_CASE("a turned circle indenter with gravity and a point load: invariant too
       "load": [{"type": "displacement", "boundary": "top", "value": [null, -0.02]},
                {"type": "gravity", "density": 0.001, "g": [0, -1]},
                {"type": "point", "at": [0.5, 2.0], "value": [0.001, -0.002]}]})";
-  const SceneRun base = run_scene("scenes/block-on-circle.json", patch);
+  const SceneRun base = solve_scene("scenes/block-on-circle.json", patch);
   nlohmann::json turned_scene = nlohmann::json::parse(patched_scene("scenes/block-on-circle.json", patch));
   turned_scene["transform"] = {{"rotate_degrees", -63.0}};
-  const SceneRun turned = run_scene(parse_scene(turned_scene.dump(), source_path("scenes/x.json")));
+  const SceneRun turned = solve_scene(parse_scene(turned_scene.dump(), source_path("scenes/x.json")));
   REQUIRE(base.result.status == Status::Converged);
   REQUIRE(turned.result.status == Status::Converged);
   CHECK(relative_error(turned.contact.total_force, base.contact.total_force) < 1e-6);

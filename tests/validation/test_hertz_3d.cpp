@@ -27,7 +27,7 @@ HertzComparison hertz_of(const SceneRun& run) {
 }  // namespace
 
 TEST_CASE("scenes/hertz-sphere.json matches Hertz's sphere", "[validation][hertz][3d]") {
-  const SceneRun run = run_scene("scenes/hertz-sphere.json");
+  const SceneRun run = solve_scene("scenes/hertz-sphere.json");
   REQUIRE(run.result.status == Status::Converged);
   const HertzComparison hertz = hertz_of(run);
   CHECK(hertz.dim == 3);
@@ -50,7 +50,7 @@ TEST_CASE("other radii, materials, pushes and meshes stay within Hertz's 3% in 3
       R"({"material": {"E": 210e9, "nu": 0.2}, "load": {"value": [null, null, -0.006]}, "body": {"mesh": {"contact_size": 0.012}}})",
       R"({"body": {"symmetry": false, "mesh": {"contact_size": 0.02}}, "load": {"value": [0.0, 0.0, -0.01]}})");
   CAPTURE(patch);
-  const SceneRun run = run_scene("scenes/hertz-sphere.json", patch);
+  const SceneRun run = solve_scene("scenes/hertz-sphere.json", patch);
   REQUIRE(run.result.status == Status::Converged);
   const HertzComparison hertz = hertz_of(run);
   CHECK(std::abs(hertz.error_contact_radius) < 0.03);
@@ -61,9 +61,9 @@ TEST_CASE("other radii, materials, pushes and meshes stay within Hertz's 3% in 3
 TEST_CASE("10-node tetrahedra reach a smaller pressure error than 4-node ones with fewer DOFs",
           "[validation][hertz][3d]") {
   const SceneRun linear =
-      run_scene("scenes/hertz-sphere.json", R"({"body": {"mesh": {"contact_size": 0.01, "order": 1}}})");
+      solve_scene("scenes/hertz-sphere.json", R"({"body": {"mesh": {"contact_size": 0.01, "order": 1}}})");
   const SceneRun quadratic =
-      run_scene("scenes/hertz-sphere.json", R"({"body": {"mesh": {"contact_size": 0.02, "order": 2}}})");
+      solve_scene("scenes/hertz-sphere.json", R"({"body": {"mesh": {"contact_size": 0.02, "order": 2}}})");
   CAPTURE(linear.qp.n_dofs(), quadratic.qp.n_dofs());
   CHECK(quadratic.qp.n_dofs() < 2 * linear.qp.n_dofs());
   CHECK(hertz_of(quadratic).error_l2 < 0.75 * hertz_of(linear).error_l2);
@@ -71,14 +71,14 @@ TEST_CASE("10-node tetrahedra reach a smaller pressure error than 4-node ones wi
 }
 
 TEST_CASE("a 3D scene turned about any axis: the same force, a and p0 within 1e-6", "[validation][transform][3d]") {
-  const SceneRun base = run_scene("scenes/hertz-sphere.json", kCoarseSphere);
+  const SceneRun base = solve_scene("scenes/hertz-sphere.json", kCoarseSphere);
   const char* turn =
       GENERATE(R"({"axis": [1, 2, 3], "rotate_degrees": 37})", R"({"axis": [0, 1, 0], "rotate_degrees": 90})",
                R"({"axis": [-1, 0.5, 0.2], "rotate_degrees": 151.5})");
   CAPTURE(turn);
   const SceneRun turned =
-      run_scene("scenes/hertz-sphere.json",
-                std::string(R"({"body": {"mesh": {"contact_size": 0.03, "order": 1}}, "transform": )") + turn + "}");
+      solve_scene("scenes/hertz-sphere.json",
+                  std::string(R"({"body": {"mesh": {"contact_size": 0.03, "order": 1}}, "transform": )") + turn + "}");
   REQUIRE(turned.result.status == Status::Converged);
   CHECK(relative_error(turned.contact.total_force, base.contact.total_force) < 1e-6);
   CHECK(relative_error(turned.contact.contact_radius, base.contact.contact_radius) < 1e-6);
@@ -95,8 +95,8 @@ TEST_CASE("3D units: E × 1e±9 and lengths × 1e±3 give the same scaled answer
   const std::string solver =
       R"(, "solver": {"backend": ")" + to_string(backend) + R"(", "tol": 1e-10, "max_iterations": 20000})";
   const SceneRun base =
-      run_scene("scenes/hertz-sphere.json",
-                std::string(R"({"body": {"mesh": {"contact_size": 0.03, "order": 1}})") + solver + "}");
+      solve_scene("scenes/hertz-sphere.json",
+                  std::string(R"({"body": {"mesh": {"contact_size": 0.03, "order": 1}})") + solver + "}");
   REQUIRE(base.result.status == Status::Converged);
   const double E = GENERATE(1e9, 1e-9);
   const double L = GENERATE(1e3, 1e-3);
@@ -106,7 +106,7 @@ TEST_CASE("3D units: E × 1e±9 and lengths × 1e±3 give the same scaled answer
                             R"(, "mesh": {"size": )" + text(0.2 * L) + R"(, "contact_size": )" + text(0.03 * L) +
                             R"(, "order": 1}}, "load": {"value": [null, null, )" + text(-0.01 * L) + "]}" + solver +
                             "}";
-  const SceneRun scaled = run_scene("scenes/hertz-sphere.json", patch);
+  const SceneRun scaled = solve_scene("scenes/hertz-sphere.json", patch);
   REQUIRE(scaled.result.status == Status::Converged);
   // Force scales with E L², lengths with L, pressures with E.
   CHECK(relative_error(scaled.contact.total_force, base.contact.total_force * E * L * L) < 1e-6);
@@ -123,7 +123,7 @@ TEST_CASE("a block pressed flat on a plane in 3D: uniform pressure E δ/H, exact
     "load": {"type": "displacement", "boundary": "top", "value": [null, null, -0.01]},
     "obstacle": {"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1]},
     "solver": {"backend": "active_set", "tol": 1e-12}})";
-  const SceneRun run = run_scene(parse_scene(scene, source_path("scenes/block.json")));
+  const SceneRun run = solve_scene(parse_scene(scene, source_path("scenes/block.json")));
   REQUIRE(run.result.status == Status::Converged);
   const double pressure = 2.0 * 0.01 / 0.5;
   CHECK(run.contact.total_force == Approx(pressure * 1.0 * 0.6).epsilon(1e-9));
@@ -132,7 +132,7 @@ TEST_CASE("a block pressed flat on a plane in 3D: uniform pressure E δ/H, exact
 }
 
 TEST_CASE("scenes/punch.json: Boussinesq's force within 5% and the pressure's shape", "[validation][boussinesq][3d]") {
-  const SceneRun run = run_scene("scenes/punch.json", R"({"body": {"mesh": {"contact_size": 0.06}}})");
+  const SceneRun run = solve_scene("scenes/punch.json", R"({"body": {"mesh": {"contact_size": 0.06}}})");
   REQUIRE(run.result.status == Status::Converged);
   const auto punch = compare_with_boussinesq(run.model, run.contact);
   REQUIRE(punch.has_value());

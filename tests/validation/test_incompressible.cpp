@@ -21,7 +21,7 @@ Accuracy hertz_at(const std::string& scene, double nu, const std::string& formul
   const std::string patch = R"({"material": {"nu": )" + std::to_string(nu) + R"(}, "body": {"formulation": ")" +
                             formulation + R"("}, "solver": {"backend": ")" +
                             (backend_available(Backend::Nlopt) ? "nlopt" : "active_set") + R"("}})";
-  const SceneRun r = run_scene(scene, patch);
+  const SceneRun r = solve_scene(scene, patch);
   REQUIRE(r.result.status == Status::Converged);
   const auto hertz = compare_with_hertz(r.model, r.contact);
   REQUIRE(hertz.has_value());

@@ -33,7 +33,7 @@ std::set<int> loaded_nodes(const SceneRun& run) {
 }  // namespace
 
 TEST_CASE("the Gmsh-meshed Hertz disc passes the 3% Hertz check", "[validation][scenes][gmsh]") {
-  const SceneRun run = run_scene("scenes/hertz-gmsh.json");
+  const SceneRun run = solve_scene("scenes/hertz-gmsh.json");
   REQUIRE(run.result.status == Status::Converged);
   const HertzComparison hertz = hertz_of(run);
   CHECK(hertz.radius_source == "fitted");
@@ -51,7 +51,7 @@ TEST_CASE("a rigid circle pressed into a flat block matches Hertz with R = r wit
       GENERATE(R"({})", R"({"obstacle": {"center": [0, -2.5], "radius": 2.5}, "load": {"value": [null, -0.03]}})",
                R"({"material": {"E": 70e9, "nu": 0.33}, "body": {"width": 6, "height": 3}})");
   CAPTURE(patch);
-  const SceneRun run = run_scene("scenes/block-on-circle.json", patch);
+  const SceneRun run = solve_scene("scenes/block-on-circle.json", patch);
   REQUIRE(run.result.status == Status::Converged);
   const HertzComparison hertz = hertz_of(run);
   CHECK(hertz.radius_source == "obstacle.radius");
@@ -78,9 +78,9 @@ Mesh.MeshSizeExtendFromBoundary = 0; Mesh.MeshSizeFromPoints = 0; Mesh.MeshSizeF
   REQUIRE(std::system(
               ("gmsh " + directory.path("block.geo") + " -2 -format msh22 -o " + msh + " >/dev/null 2>&1").c_str()) ==
           0);
-  const SceneRun run = run_scene(parse_scene(R"({"material": {"E": 200e9, "nu": 0.3},
+  const SceneRun run = solve_scene(parse_scene(R"({"material": {"E": 200e9, "nu": 0.3},
       "body": {"shape": "mesh", "file": ")" + msh +
-                                             R"("},
+                                               R"("},
       "load": {"type": "displacement", "boundary": "top", "value": [0, -0.02]},
       "obstacle": {"type": "circle", "center": [0, -1], "radius": 1},
       "contact": {"boundary": "bottom"}, "transform": {"rotate_degrees": 77}})"));
@@ -93,7 +93,7 @@ Mesh.MeshSizeExtendFromBoundary = 0; Mesh.MeshSizeFromPoints = 0; Mesh.MeshSizeF
 }
 
 TEST_CASE("a disc in a V-groove: two Hertz contacts in equilibrium with the push", "[validation][scenes]") {
-  const SceneRun run = run_scene("scenes/disc-in-vgroove.json");
+  const SceneRun run = solve_scene("scenes/disc-in-vgroove.json");
   REQUIRE(run.result.status == Status::Converged);
   REQUIRE(run.contact.obstacles.size() == 2);
   const ObstacleContact& left = run.contact.obstacles[0];
@@ -115,8 +115,8 @@ TEST_CASE("a disc in a V-groove: two Hertz contacts in equilibrium with the push
 
 TEST_CASE("one V-shaped profile acts as two planes", "[validation][scenes][profile]") {
   const std::string coarse = R"({"body": {"mesh": {"contact_size": 0.01}}})";
-  const SceneRun planes = run_scene("scenes/disc-in-vgroove.json", coarse);
-  const SceneRun profile = run_scene("scenes/disc-in-vgroove.json", R"({"body": {"mesh": {"contact_size": 0.01}},
+  const SceneRun planes = solve_scene("scenes/disc-in-vgroove.json", coarse);
+  const SceneRun profile = solve_scene("scenes/disc-in-vgroove.json", R"({"body": {"mesh": {"contact_size": 0.01}},
       "obstacle": {"type": "profile", "points": [[-1.5, 1.0857864376269049], [0, -0.41421356237309503], [1.5, 1.0857864376269049]],
                    "body_side": "left"}})");
   REQUIRE(planes.result.status == Status::Converged);
@@ -129,7 +129,7 @@ TEST_CASE("one V-shaped profile acts as two planes", "[validation][scenes][profi
 }
 
 TEST_CASE("a strip lifts off its foundation beyond a receding contact zone", "[validation][scenes][liftoff]") {
-  const SceneRun run = run_scene("scenes/strip-liftoff.json");
+  const SceneRun run = solve_scene("scenes/strip-liftoff.json");
   REQUIRE(run.result.status == Status::Converged);
   const Eigen::VectorXd u = full_displacement(run.model, run.result.u);
   double inner_gap = 0, end_gap = 0, widest = 0;
@@ -152,10 +152,10 @@ TEST_CASE("without weight the contact zone does not depend on the push", "[valid
   // The strip touches its foundation with zero gap: the problem is positively homogeneous, so
   // ten times the push gives ten times every force on the same contact zone.
   const std::string weightless = R"({"load": [{"type": "displacement", "boundary": "punch", "value": [0.0, -0.01]}]})";
-  const SceneRun push = run_scene("scenes/strip-liftoff.json", weightless);
+  const SceneRun push = solve_scene("scenes/strip-liftoff.json", weightless);
   const SceneRun harder =
-      run_scene("scenes/strip-liftoff.json",
-                R"({"load": [{"type": "displacement", "boundary": "punch", "value": [0.0, -0.1]}]})");
+      solve_scene("scenes/strip-liftoff.json",
+                  R"({"load": [{"type": "displacement", "boundary": "punch", "value": [0.0, -0.1]}]})");
   REQUIRE(push.result.status == Status::Converged);
   REQUIRE(harder.result.status == Status::Converged);
   CHECK(loaded_nodes(push) == loaded_nodes(harder));
@@ -164,8 +164,8 @@ TEST_CASE("without weight the contact zone does not depend on the push", "[valid
 }
 
 TEST_CASE("6-node triangles reach the 3-node accuracy with a quarter of the DOFs", "[validation][scenes][order]") {
-  const SceneRun linear = run_scene("scenes/hertz.json");
-  const SceneRun quadratic = run_scene("scenes/hertz-order2.json");
+  const SceneRun linear = solve_scene("scenes/hertz.json");
+  const SceneRun quadratic = solve_scene("scenes/hertz-order2.json");
   REQUIRE(quadratic.result.status == Status::Converged);
   CHECK(4 * quadratic.qp.n_dofs() <= linear.qp.n_dofs());
   const HertzComparison h1 = hertz_of(linear), h2 = hertz_of(quadratic);
@@ -188,10 +188,10 @@ TEST_CASE("plane stress with a thickness: forces scale with it, pressures do not
       R"({"model": "plane_stress", "body": {"mesh": {"size": 0.4, "contact_size": 0.01}}, "contact": {"max_gap": 0.05},
       "load": [{"type": "displacement", "boundary": "top", "value": [null, -0.02]}, {"type": "gravity", "density": 0.001, "g": [0, -1]},
                {"type": "traction", "boundary": "right", "value": [0, -0.001]}]})";
-  const SceneRun unit = run_scene("scenes/block-on-circle.json", base);
+  const SceneRun unit = solve_scene("scenes/block-on-circle.json", base);
   nlohmann::json thin = nlohmann::json::parse(patched_scene("scenes/block-on-circle.json", base));
   thin["body"]["thickness"] = 0.25;
-  const SceneRun quarter = run_scene(parse_scene(thin.dump(), source_path("scenes/x.json")));
+  const SceneRun quarter = solve_scene(parse_scene(thin.dump(), source_path("scenes/x.json")));
   CHECK(quarter.contact.total_force == Approx(0.25 * unit.contact.total_force).epsilon(1e-6));
   CHECK(quarter.contact.max_pressure == Approx(unit.contact.max_pressure).epsilon(1e-6));
   CHECK(quarter.contact.half_width == Approx(unit.contact.half_width).epsilon(1e-6));
