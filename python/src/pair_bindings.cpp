@@ -9,6 +9,7 @@
 #include "bindings.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/io.hpp"
+#include "convert.hpp"
 
 namespace contactqp::python {
 namespace {
