@@ -64,6 +64,10 @@ class Ssn {
   // A Newton point's step from the feasible y, projected and halved until q decreases (or, at
   // full length, the residual does): true, with y and w moved, when one is found.
   bool newton_search(const VectorXd& y_newton, VectorXd& y, VectorXd& w);
+  // When the Newton point from y's states finds no descent: the states of that (unprojected)
+  // point, then of the next, as plain primal-dual active-set steps, each point tried by
+  // newton_search from y. True, with y and w moved, when one descends.
+  bool newton_chain(VectorXd y_newton, VectorXd& y, VectorXd& w);
 
   const FrictionSsnProblem& p_;
   const FrictionSsnOptions& options_;
@@ -221,6 +225,26 @@ bool Ssn::newton_search(const VectorXd& y_newton, VectorXd& y, VectorXd& w) {
   return false;
 }
 
+bool Ssn::newton_chain(VectorXd y_newton, VectorXd& y, VectorXd& w) {
+  // Near the answer a few nodes sit on the edge between stick and slip (|v| ≈ r), and the states
+  // that y predicts can make a face whose point lies uphill (scenes/mindlin-spheres.json's finer
+  // meshes: 600–1000 gradient steps per load step before). The unprojected Newton point's own
+  // states are the active-set step the method would take next; following them a few points
+  // reaches a face that descends (2–3 points there), and the search keeps the iterates monotone,
+  // so the states still cannot cycle.
+  constexpr int kChain = 4;
+  for (int k = 0; k < kChain && result_.iterations < options_.max_iterations; ++k) {
+    const Linearisation lin = linearise(y_newton, gradient(y_newton));
+    VectorXd next;
+    if (!newton_point(lin, next)) return false;
+    ++result_.iterations;  // each point costs a Newton step's factorisation
+    ++result_.newton_steps;
+    if (newton_search(next, y, w)) return true;
+    y_newton = std::move(next);
+  }
+  return false;
+}
+
 FrictionSsnResult Ssn::run() {
   result_.residual = std::numeric_limits<double>::infinity();
   VectorXd y = options_.start.size() == M_ ? project(options_.start) : VectorXd(VectorXd::Zero(M_));
@@ -237,7 +261,7 @@ FrictionSsnResult Ssn::run() {
     while (result_.iterations < options_.max_iterations) {
       const Linearisation lin = linearise(y, w);
       VectorXd y_next;
-      if (newton_point(lin, y_next) && newton_search(y_next, y, w)) {
+      if (newton_point(lin, y_next) && (newton_search(y_next, y, w) || newton_chain(y_next, y, w))) {
         ++result_.iterations;
         ++result_.newton_steps;
         if (accept(y, w)) {

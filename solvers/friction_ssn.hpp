@@ -19,9 +19,11 @@
 // In 2D the slip state fixes λ_T = ±r, and the method is the primal-dual active-set method for
 // the box. The iterates stay feasible: Newton's point is projected and its step halved until q
 // decreases (a full step that lowers the residual counts too), so the states cannot cycle (plain
-// primal-dual active-set steps do, on the 94 slipping nodes of scenes/sliding-block.json); where
-// Newton finds no descent, projected gradient steps with Barzilai–Borwein lengths and an exact
-// line search (monotone, globally convergent) move y, then Newton again.
+// primal-dual active-set steps do, on the 94 slipping nodes of scenes/sliding-block.json). Where
+// the Newton point finds no descent, the states of that point (then of the next, up to four:
+// plain active-set steps) give further Newton points, each tried by the same search; where none
+// descends, projected gradient steps with Barzilai–Borwein lengths and an exact line search
+// (monotone, globally convergent) move y, then Newton again.
 #pragma once
 
 #include <Eigen/Core>

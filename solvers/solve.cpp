@@ -127,17 +127,29 @@ SolveResult solve_with(const QuadraticProgram& qp, const SolveOptions& options, 
                        const BackendSolve& backend_solve) {
   validate(qp);
   check_solve_options(options);
-  check_problem_kind(*backend_registration(options.backend), qp);
+  const std::shared_ptr<const BackendRegistration> registration = backend_registration(options.backend);
+  check_problem_kind(*registration, qp);
   Stopwatch clock;
 
+  // A frictional problem left at the default limit gets the backend's own, when larger.
+  const bool raised = !qp.friction.empty() && options.max_iterations == kDefaultMaxIterations &&
+                      registration->friction_max_iterations > kDefaultMaxIterations;
+  SolveOptions limited;
+  if (raised) {
+    limited = options;
+    limited.max_iterations = registration->friction_max_iterations;
+  }
+  const SolveOptions& used = raised ? limited : options;
+
   SolveResult result;
-  if (options.scale) {
+  if (used.scale) {
     const QpScaling scaling = choose_scaling(qp, K.diagonal());
-    result = backend_solve(scaled_qp(qp, scaling), scaled_options(options, scaling));
+    result = backend_solve(scaled_qp(qp, scaling), scaled_options(used, scaling));
     unscale_result(result, scaling);
   } else {
-    result = backend_solve(qp, options);
+    result = backend_solve(qp, used);
   }
+  if (raised) result.diagnostics["max_iterations"] = used.max_iterations;  // what the JSON's solver block reports
 
   // The final guard: no NaN or Inf ever leaves solve(), nor numbers whose energy overflows.
   // With friction λ_T has m · n_directions entries; without, none.

@@ -49,5 +49,6 @@ CONTACTQP_BUILTIN(uzawa) {
   uzawa.check_options = check_uzawa_options;
   uzawa.solve = solve_uzawa;
   uzawa.problem_kinds = {ProblemKind::Frictionless, ProblemKind::Tresca, ProblemKind::Coulomb};
+  uzawa.friction_max_iterations = 50000;
   register_backend(uzawa);
 }

@@ -78,9 +78,11 @@ def figure_cylinders():
     figure.savefig(os.path.join(IMG, "friction-cylinders.png"), dpi=110)
 
 
-def figure_spheres():
-    points = [r for r in rows("profile_mindlin-spheres_0.7.csv") if r["pressure"] > 0 or r["state"] > 0]
-    s = summary("mindlin-spheres").get(3)
+def spheres_row(axes, ratio, step, figure):
+    """One shear step of the spheres: pressure, traction along Q and the states seen from below
+    (the half model y >= 0 mirrored to the whole patch), then q(r) against Mindlin's."""
+    points = [r for r in rows(f"profile_mindlin-spheres_{ratio}.csv") if r["pressure"] > 0 or r["state"] > 0]
+    s = summary("mindlin-spheres").get(step)
     if not points or not s:
         return
     a, c = s["size"], s["c"]
@@ -89,36 +91,55 @@ def figure_spheres():
     p = numpy.array([r["pressure"] for r in points])
     q = numpy.array([r["tangential_traction"] for r in points])
     state = numpy.array([r["state"] for r in points])
-    figure, axes = plt.subplots(1, 3, figsize=(15, 4.6))
+    both = numpy.concatenate  # the mirror image y -> -y of the modelled half
+    X, Y = both([x, x]), both([y, -y])
     circle = numpy.linspace(0, 2 * math.pi, 200)
-    for ax, values, title, cmap in ((axes[0], p, "contact pressure p", "viridis"),
-                                    (axes[1], q, "tangential traction along Q", "magma")):
-        drawn = ax.scatter(x, y, c=values, s=7, cmap=cmap)
-        figure.colorbar(drawn, ax=ax, shrink=0.8)
-        ax.plot(numpy.cos(circle), numpy.sin(circle), "w-", lw=1)
+
+    def circles(ax):
+        ax.plot(numpy.cos(circle), numpy.sin(circle), "k-", lw=0.8)
         ax.plot(c / a * numpy.cos(circle), c / a * numpy.sin(circle), "c--", lw=1.2)
         ax.set_aspect("equal")
-        ax.set_title(title + ": Hertz's a (white), Mindlin's c (cyan)", fontsize=9)
         ax.set_xlabel("x / a  (Q along +x)")
+
+    for ax, values, title, cmap in ((axes[0], p, "pressure p", "viridis"), (axes[1], q, "traction along Q", "magma")):
+        drawn = ax.scatter(X, Y, c=both([values, values]), s=4, cmap=cmap)
+        figure.colorbar(drawn, ax=ax, shrink=0.75)
+        circles(ax)
+        ax.set_title(f"Q/(μP) = {s['load_ratio']:.2f}: {title}", fontsize=9)
+    states = both([state, state])
+    # The vertices of 6-node faces carry next to no force (their consistent weight is 0), so
+    # their μλ_N is next to 0 and most of them slip: drawn apart, they do not count in c.
+    force = numpy.array([r["force"] for r in points])
+    bare = both([force, force]) < 1e-2 * numpy.median(force[force > 0])
+    axes[2].scatter(X[(states == 1) & ~bare], Y[(states == 1) & ~bare], s=4, c="tab:blue", label="stick")
+    axes[2].scatter(X[(states == 2) & ~bare], Y[(states == 2) & ~bare], s=4, c="tab:red", label="slip")
+    axes[2].scatter(X[bare], Y[bare], s=3, c="lightgrey", label="face vertex (no force)")
+    circles(axes[2])
+    axes[2].set_title(f"stick and slip: c/a = {s['c_computed'] / a:.3f} (Mindlin {c / a:.3f}, cyan)", fontsize=9)
+    axes[2].legend(fontsize=7, loc="upper right")
     axes[0].set_ylabel("y / a  (seen from below)")
-    sticks = state == 1
-    axes[1].scatter(x[sticks], y[sticks], s=2, c="cyan", marker=".")
     r = numpy.hypot(x, y) * a
     p0 = max(rr["hertz_pressure"] for rr in points)
-    axes[2].scatter(r[state == 1] / a, q[state == 1] / (MU * p0), s=5, c="tab:blue", label="computed, stick")
-    axes[2].scatter(r[state == 2] / a, q[state == 2] / (MU * p0), s=5, c="tab:red", label="computed, slip")
+    axes[3].scatter(r[state == 1] / a, q[state == 1] / (MU * p0), s=5, c="tab:blue", label="computed, stick")
+    axes[3].scatter(r[state == 2] / a, q[state == 2] / (MU * p0), s=5, c="tab:red", label="computed, slip")
     grid = numpy.linspace(0, 1.05 * a, 400)
-    axes[2].plot(grid / a, mindlin_q(grid, a, c, 1.0), "k-", label="Mindlin")
-    axes[2].plot(grid / a, numpy.sqrt(numpy.clip(1 - (grid / a) ** 2, 0, None)), "k:", label="μ p (slip limit)")
-    axes[2].axvline(c / a, color="grey", ls="--", lw=0.6)
-    axes[2].set_xlabel("r / a")
-    axes[2].set_ylabel("q / (μ p0)")
-    axes[2].legend(fontsize=8)
-    axes[2].set_title(f"q(r), Q/(μP) = {s['load_ratio']:.2f}: c/a = {s['c_computed'] / a:.3f} (Mindlin {c / a:.3f}), "
-                      f"L2 {100 * s['error_l2']:.1f}%", fontsize=9)
-    figure.suptitle("Two identical spheres (scenes/mindlin-spheres.json): the contact patch from below", fontsize=10)
+    axes[3].plot(grid / a, mindlin_q(grid, a, c, 1.0), "k-", label="Mindlin")
+    axes[3].plot(grid / a, numpy.sqrt(numpy.clip(1 - (grid / a) ** 2, 0, None)), "k:", label="μ p (slip limit)")
+    axes[3].axvline(c / a, color="grey", ls="--", lw=0.6)
+    axes[3].set_xlabel("r / a")
+    axes[3].set_ylabel("q / (μ p0)")
+    axes[3].legend(fontsize=7)
+    axes[3].set_title(f"q(r): L2 error {100 * s['error_l2']:.1f}%", fontsize=9)
+
+
+def figure_spheres():
+    figure, axes = plt.subplots(2, 4, figsize=(18, 8.4))
+    for row, (ratio, step) in zip(axes, (("0.3", 2), ("0.7", 3))):
+        spheres_row(row, ratio, step, figure)
+    figure.suptitle("Two identical spheres (scenes/mindlin-spheres.json): the contact patch from below, "
+                    "Hertz's a (black) and Mindlin's c (cyan)", fontsize=10)
     figure.tight_layout()
-    figure.savefig(os.path.join(IMG, "friction-spheres.png"), dpi=110)
+    figure.savefig(os.path.join(IMG, "friction-spheres.png"), dpi=100)
 
 
 def figure_paths():

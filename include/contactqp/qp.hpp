@@ -161,10 +161,14 @@ struct InitialGuess {
   bool empty() const { return u.size() == 0 && lambda.size() == 0 && lambda_t.size() == 0; }
 };
 
+// The default iteration limit. With friction a backend may raise it when the caller leaves it
+// here (BackendRegistration::friction_max_iterations: uzawa's 50000).
+inline constexpr int kDefaultMaxIterations = 10000;
+
 struct SolveOptions {
   Backend backend = Backend::Uzawa;
   double tol = 1e-8;  // relative, dimensionless: each backend's stopping rule uses the scales of certificate.hpp
-  int max_iterations = 10000;
+  int max_iterations = kDefaultMaxIterations;
   bool verbose = false;  // third-party banners and per-iteration logs stay silent unless set
   bool scale = true;     // solve an internally scaled copy, so E and length units do not matter
   UzawaOptions uzawa;

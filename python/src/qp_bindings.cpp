@@ -124,7 +124,7 @@ Arguments (None keeps the library's default, shown in brackets):
   tol             relative tolerance in (0, 1) of the backend's stopping rule, measured with
                   the certificate's scales [1e-8]
   rho             Uzawa's step: "auto", a positive number, or a fraction of rho_max like "0.5x" [auto]
-  max_iterations  positive iteration limit [10000]
+  max_iterations  positive iteration limit [10000; uzawa on a frictional problem 50000]
   observer        callable observer(k, u, lam), called with each iterate (numpy copies, in
                   your units) by the iterative backends; an exception it raises stops the
                   observing and is raised again when the solve returns

@@ -137,7 +137,8 @@ void add_compare_command(CLI::App& app, int& exit_status) {
   refuse_empty(
       command->add_option("--rho", solve.rho, "Uzawa step: auto, a number, or a fraction of rho_max like 0.5x"));
   CLI::Option* max_iterations =
-      command->add_option("--max-iterations", solve.max_iterations, "Iteration limit of every backend (default 10000)");
+      command->add_option("--max-iterations", solve.max_iterations,
+                          "Iteration limit of every backend (default 10000; uzawa on a frictional problem 50000)");
   refuse_empty(command->add_option("--json", solve.json_path, "Write the comparison JSON here"));
   command->add_option("--max-elements", solve.max_elements, "Refuse meshes with more triangles (default 4000000)");
   add_linear_solver_options(*command, solve);

@@ -197,7 +197,8 @@ void add_solve_command(CLI::App& app, int& exit_status) {
   refuse_empty(
       command->add_option("--rho", arguments->rho, "Uzawa step: auto, a number, or a fraction of rho_max like 0.5x"));
   CLI::Option* max_iterations =
-      command->add_option("--max-iterations", arguments->max_iterations, "Iteration limit (default 10000)");
+      command->add_option("--max-iterations", arguments->max_iterations,
+                          "Iteration limit (default 10000; uzawa on a frictional problem 50000)");
   refuse_empty(command->add_option("--json", arguments->json_path, "Write the result JSON here"));
   refuse_empty(command->add_option("--csv", arguments->csv_path, "Write the contact pressure profile CSV here"));
   refuse_empty(

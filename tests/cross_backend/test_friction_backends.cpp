@@ -207,3 +207,31 @@ TEST_CASE("friction: a warm start from the answer costs fewer iterations than a 
     CHECK(warm.iterations < cold.iterations);
   CHECK(relative_difference(warm.u, known.exact.u) < kAccuracy);
 }
+
+TEST_CASE("friction: uzawa's iteration limit is 50000 at the default, and a caller's limit is kept",
+          "[cross_backend][friction]") {
+  // Plain Uzawa's sticking rows converge at the rate of S's smallest eigenvalue (18326 steps in
+  // one Tresca solve of scenes/mindlin-cylinders.json at tol 1e-10): its registration raises the
+  // default limit on frictional problems only.
+  const KnownFrictionQp known = known_friction_qp(4, 2, FrictionLaw::Tresca, 7);
+  SolveOptions options;
+  options.backend = Backend::Uzawa;
+  options.tol = kTol;
+  const SolveResult raised = solve(known.qp, options);
+  check_against(raised, known.exact);
+  CHECK(raised.diagnostics.at("max_iterations") == 50000);
+
+  options.max_iterations = 3;  // the caller's own limit: kept, and reached
+  const SolveResult capped = solve(known.qp, options);
+  CHECK(capped.status == Status::MaxIterations);
+  CHECK(capped.iterations == 3);
+  CHECK(capped.diagnostics.count("max_iterations") == 0);
+
+  options.max_iterations = kDefaultMaxIterations;  // the other backends keep the default
+  options.backend = Backend::UzawaAccelerated;
+  CHECK(solve(known.qp, options).diagnostics.count("max_iterations") == 0);
+  options.backend = Backend::Uzawa;  // and so does a frictionless problem
+  QuadraticProgram frictionless = known.qp;
+  frictionless.friction = FrictionBlock{};
+  CHECK(solve(frictionless, options).diagnostics.count("max_iterations") == 0);
+}
