@@ -116,13 +116,13 @@ TEST_CASE("the VTU of every shipped scene reads back in VTK with the named array
     if (!large(scene) && !heavy(scene) && !coarsened(scene)) check_vtu_of(scene);
 }
 
-TEST_CASE("the VTU of the 3D two-body scenes reads back in VTK with the named arrays", "[unit][vtu][heavy]") {
+TEST_CASE("the VTU of the two spheres in 3D reads back in VTK with the named arrays", "[unit][vtu][heavy]") {
   for (const std::string& scene : shipped_scenes())
     if (heavy(scene)) check_vtu_of(scene);
 }
 
 TEST_CASE("the VTU of the spheres with friction, coarsened, reads back in VTK with the named arrays", "[unit][vtu]") {
-  // scenes/mindlin-spheres.json with every body's mesh coarsened (7.4e3 DOFs): the 3D friction
+  // scenes/mindlin-spheres.json with every body's mesh coarsened (6.7e3 DOFs): the 3D friction
   // arrays of its three load steps, as the shipped scene writes them.
   json scene = json::parse(read_text(source_path("scenes/mindlin-spheres.json")));
   for (json& body : scene["bodies"]) body["mesh"].update({{"size", 0.5}, {"contact_size", 0.05}, {"grading", 0.5}});
