@@ -49,6 +49,8 @@ def run(build, scene, ranks, out, name, extra):
     if ranks > 1:
         command = ["mpirun", "-n", str(ranks), "--oversubscribe"] + command
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    if os.path.exists(json_path):
+        os.remove(json_path)  # a failed run must not read an earlier run's result
     start = time.monotonic()
     done = subprocess.run(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     wall = time.monotonic() - start

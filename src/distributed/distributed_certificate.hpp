@@ -27,7 +27,7 @@ DistributedSolution solution_of(const DistributedModel& model, const Distributed
                                 const std::vector<double>& mu);
 
 // The terms of this rank's rows, reduced over the ranks (collective); with `solver`, θ's
-// rᵀK⁻¹r by one solve with A.
+// rᵀK⁻¹r by one solve with A, to 1e-3 · tol of the certificate's energy scale.
 CertificateTerms distributed_certificate_terms(const DistributedModel& model, const DistributedBoundQp& qp,
                                                const DistributedSolution& solution, SolverOfA* solver, double tol);
 

@@ -40,9 +40,8 @@ PetscErrorCode null_space_of(const std::vector<Vec>& vectors, bool orthonormalis
   return 0;
 }
 
-// The loop on the distributed problem. The P1 start (bound_pdas.hpp) is left out: it needs the
-// P1 level's columns at a candidate vertex in the candidate's own frame (the replicated
-// bound_form.cpp rotates them), and the distributed P = T P_u keeps them along the axes.
+// The loop on the distributed problem, with the P1 start for quadratic elements (the P1
+// level's columns at a candidate vertex are in its own variables, distributed_problem.hpp).
 PetscErrorCode solve(const DistributedBoundQp& problem, const DistributedPdasOptions& options, BoundPdasResult* solved,
                      bool* options_error, double* petsc_bytes) {
   MatNullSpace modes = nullptr, coarse_modes = nullptr;
@@ -51,20 +50,25 @@ PetscErrorCode solve(const DistributedBoundQp& problem, const DistributedPdasOpt
   PetscBoundQp qp;
   qp.A = problem.A;
   qp.b = problem.b;
-  qp.bounded = problem.bounded;
-  qp.upper = problem.upper;
+  if (!options.without_bounds) {
+    qp.bounded = problem.bounded;
+    qp.upper = problem.upper;
+  }
   if (problem.coarse_interpolation) {
     PetscCall(null_space_of(problem.coarse_near_null_space, true, &coarse_modes));
     qp.coarse_interpolation = problem.coarse_interpolation;
     qp.coarse_modes = coarse_modes;
+    if (!options.without_bounds) qp.coarse_bounded = problem.coarse_bounded;
   }
   BoundPdasOptions settings;
   settings.tol = options.tol;
   settings.max_iterations = options.max_iterations;
-  settings.inexact = options.inexact;
-  settings.p1_start = false;
-  settings.residual = options.residual;
+  settings.inexact = options.inexact && !options.without_bounds;
+  settings.p1_start = !options.without_bounds;
+  // Without bounds nothing but stationarity is left, and the inner rule holds that.
+  settings.residual = options.without_bounds ? [](Vec, const std::vector<double>&) { return 0.0; } : options.residual;
   const PetscErrorCode code = solve_bound_pdas(qp, settings, solved, options_error);
+  if (options.without_bounds) solved->mu.assign(problem.bounded.size(), 0.0);
   *petsc_bytes = matrix_bytes(problem.A) + solved->multigrid.bytes;
   if (modes) PetscCall(MatNullSpaceDestroy(&modes));
   if (coarse_modes) PetscCall(MatNullSpaceDestroy(&coarse_modes));

@@ -23,6 +23,9 @@ struct DistributedPdasOptions {
   int max_iterations = 10000;
   std::string petsc_options;
   bool inexact = true;  // loose CG solves while the active set changes
+  // --no-contact: the bounds dropped, so the loop is one linear solve A v = b by the same KSP
+  // and hierarchy, at the final rule (the contact solve's reference; μ = 0 at every bound).
+  bool without_bounds = false;
   // The relative KKT residual without stationarity (certificate.hpp) of this rank's v and μ (one
   // per own bound); collective: returns the global value.
   std::function<double(Vec v, const std::vector<double>& mu)> residual;

@@ -311,6 +311,27 @@ void add_coarse_space(const DistributedModel& dm, DistributedBoundQp& qp, const 
   dm.shared.from_owner(coarse.data(), 1);
   qp.vertex_of_node = coarse;
 
+  // A candidate vertex's coarse columns are in its own variables, as its fine rows are (the
+  // bound form's T applied to the vertex columns too, bound_form.cpp): u at the vertex = Q w, so
+  // that its bound is a bound on one coarse column and the P1 start can solve the contact
+  // problem on that level. in_vertex_variables(vertex, false) is the dim × dim block of u in
+  // the vertex's coarse variables (Q on its group's components, the identity elsewhere);
+  // (vertex, true) the inverse, T, which takes the rigid modes there.
+  auto in_vertex_variables = [&](int node, bool inverse) {
+    Eigen::MatrixXd block = Eigen::MatrixXd::Identity(dim, dim);
+    const int t = qp.transform_of_node[node];
+    if (t < 0) return block;
+    const NodeTransform& transform = qp.transforms[t];
+    std::vector<int> component;
+    for (int column : transform.columns)
+      for (int c = 0; c < dim; ++c)
+        if (model.free_index[dim * node + c] == column) component.push_back(c);
+    const Eigen::MatrixXd& group = inverse ? transform.T : transform.Q;
+    for (std::size_t a = 0; a < component.size(); ++a)
+      for (std::size_t b = 0; b < component.size(); ++b) block(component[a], component[b]) = group(a, b);
+    return block;
+  };
+
   Mat& P = qp.coarse_interpolation;
   check_petsc(MatCreate(PETSC_COMM_WORLD, &P), "MatCreate");
   check_petsc(MatSetSizes(P, dm.n_own_rows, static_cast<PetscInt>(dim * own), static_cast<PetscInt>(dm.n_global_rows),
@@ -330,7 +351,7 @@ void add_coarse_space(const DistributedModel& dm, DistributedBoundQp& qp, const 
     RowMajor block = RowMajor::Zero(dim, dim * from.size());
     columns.clear();
     for (std::size_t a = 0; a < from.size(); ++a) {
-      block.middleCols(dim * a, dim).setIdentity();
+      block.middleCols(dim * a, dim) = in_vertex_variables(from[a], false);
       for (int c = 0; c < dim; ++c) columns.push_back(static_cast<PetscInt>(dim) * coarse[from[a]] + c);
     }
     block /= static_cast<double>(from.size());
@@ -368,12 +389,27 @@ void add_coarse_space(const DistributedModel& dm, DistributedBoundQp& qp, const 
   for (int j = 0; j < k; ++j) VecGetArray(qp.coarse_near_null_space[j], &values[j]);
   for (int node = 0; node < dm.n_owned; ++node) {
     if (!vertex[node]) continue;
-    const Eigen::MatrixXd motion = rigid.at(model, node);
+    Eigen::MatrixXd motion = rigid.at(model, node);
     for (int c = 0; c < dim; ++c)
-      for (int j = 0; j < k; ++j)
-        values[j][dim * (coarse[node] - first) + c] = model.free_index[dim * node + c] >= 0 ? motion(c, j) : 0.0;
+      if (model.free_index[dim * node + c] < 0) motion.row(c).setZero();
+    motion = in_vertex_variables(node, true) * motion;
+    for (int c = 0; c < dim; ++c)
+      for (int j = 0; j < k; ++j) values[j][dim * (coarse[node] - first) + c] = motion(c, j);
   }
   for (int j = 0; j < k; ++j) VecRestoreArray(qp.coarse_near_null_space[j], &values[j]);
+
+  // Each own bound's coarse column: its variable's at a candidate vertex, −1 at a mid-edge node
+  // (the order of qp.bounded, assemble_distributed_bound_qp()).
+  for (const NodeTransform& t : qp.transforms) {
+    if (t.node >= dm.n_owned) continue;
+    for (int a = 0; a < t.n_rows; ++a) {
+      PetscInt column = -1;
+      for (int c = 0; c < dim && vertex[t.node]; ++c)
+        if (model.free_index[dim * t.node + c] == t.columns[a])
+          column = static_cast<PetscInt>(dim) * coarse[t.node] + c;
+      qp.coarse_bounded.push_back(column);
+    }
+  }
 }
 
 }  // namespace
@@ -390,6 +426,7 @@ DistributedBoundQp& DistributedBoundQp::operator=(DistributedBoundQp&& other) no
   std::swap(block_size, other.block_size);
   std::swap(coarse_interpolation, other.coarse_interpolation);
   std::swap(coarse_near_null_space, other.coarse_near_null_space);
+  std::swap(coarse_bounded, other.coarse_bounded);
   std::swap(vertex_of_node, other.vertex_of_node);
   std::swap(transforms, other.transforms);
   std::swap(transform_of_node, other.transform_of_node);

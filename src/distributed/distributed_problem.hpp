@@ -41,10 +41,13 @@ struct DistributedBoundQp {
   // Quadratic elements (null otherwise): the P2 → P1 nodal interpolation in v, P_v = T P_u,
   // P_u = (1 at a vertex, ½ ½ from a mid-edge node's two edge ends) ⊗ I_dim, A's rows (the
   // prescribed ones zero) by the dim components of every vertex node (dim·vertex + c, with
-  // the vertex's owner); and the rigid-body modes on that level (0 at prescribed vertex DOFs,
-  // not orthonormalised).
+  // the vertex's owner), a candidate vertex's columns in its own variables (P_v = T P_u Q_c:
+  // its group's T on them too, as bound_form.cpp does); the rigid-body modes on that level (0
+  // at prescribed vertex DOFs, not orthonormalised); and per own bound the coarse column of its
+  // variable when its node is a vertex, −1 otherwise (the P1 start's bounds).
   Mat coarse_interpolation = nullptr;
   std::vector<Vec> coarse_near_null_space;
+  std::vector<PetscInt> coarse_bounded;
   std::vector<int> vertex_of_node;  // each local node's number among the vertices (P's columns), −1 off them
   // The transforms of the candidate nodes this rank holds (its own and its ghosts'), and of
   // each local node the index of its transform or −1.

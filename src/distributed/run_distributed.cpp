@@ -25,7 +25,7 @@ namespace {
 
 // The petsc backend's options (petsc_backend.cpp reads and checks the same keys; they were
 // validated before this runs): unaddressed keys and "petsc.key". A distributed run solves by the
-// kept hierarchy's pdas (hierarchy=kept), without the P1 start (distributed_pdas.cpp says why).
+// kept hierarchy's pdas (hierarchy=kept), with the P1 start for quadratic elements.
 DistributedPdasOptions pdas_options(const SolveOptions& options) {
   DistributedPdasOptions out;
   out.tol = options.tol;
@@ -79,10 +79,11 @@ SolveResult solve_result(const DistributedPdasResult& solved, const DistributedM
   return result;
 }
 
-// Whether run_scene() goes this way: the petsc backend with contact, a one-body scene, and
-// several processes or options.distributed.
+// Whether run_scene() goes this way: the petsc backend (with contact, or --no-contact: one
+// linear solve by the same KSP and hierarchy, the contact solve's reference), a one-body scene,
+// and several processes or options.distributed.
 bool takes_distributed_run(const Scene& scene, const RunOptions& options) {
-  return scene.solver.backend == Backend::Petsc && !options.no_contact && scene.bodies.empty() && scene.pairs.empty() &&
+  return scene.solver.backend == Backend::Petsc && scene.bodies.empty() && scene.pairs.empty() &&
          (options.distributed || process_count() > 1);
 }
 
@@ -102,7 +103,8 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
     throw InputError("backend", "= \"petsc\": does not solve " + to_string(kind) +
                                     " problems (it solves frictionless ones); backends that do: " + others);
   }
-  const DistributedPdasOptions settings = pdas_options(scene.solver);
+  DistributedPdasOptions settings = pdas_options(scene.solver);
+  settings.without_bounds = options.no_contact;
   const auto phase = [&options](const char* name) {
     begin_phase(name);  // where the ranks agree that none failed (run/phases.hpp)
     if (options.on_phase) options.on_phase(name);
@@ -118,6 +120,7 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
   report.options.observer = nullptr;
   report.timings.merge(model->local.timings);
   report.size = {model->n_global_nodes, model->n_global_elements, model->n_global_dofs, model->n_global_candidates};
+  report.no_contact = options.no_contact;
 
   DistributedSolution solution;
   {
@@ -151,8 +154,10 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
   auto own_pressure = std::make_shared<std::vector<double>>();
   report.contact = distributed_contact_summary(*model, surface, displacement, *own_pressure);
   if (surface.model) {
-    report.hertz = compare_with_hertz(*surface.model, report.contact);
-    report.boussinesq = compare_with_boussinesq(*surface.model, report.contact);
+    if (!options.no_contact) {
+      report.hertz = compare_with_hertz(*surface.model, report.contact);
+      report.boussinesq = compare_with_boussinesq(*surface.model, report.contact);
+    }
     report.model = surface.model;
     report.qp = surface.qp;
     report.result.lambda = surface.lambda;
@@ -170,7 +175,7 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
 
   report.warnings = model->local.warnings;
   report.warnings.insert(report.warnings.end(), report.result.warnings.begin(), report.result.warnings.end());
-  if (report.contact.penetrating_non_candidates > 0)
+  if (report.contact.penetrating_non_candidates > 0 && !options.no_contact)
     report.warnings.push_back(std::to_string(report.contact.penetrating_non_candidates) +
                               " boundary nodes outside the candidate set penetrate an obstacle (by up to " +
                               format_value(report.contact.max_non_candidate_penetration) + "); raise contact.max_gap");

@@ -24,16 +24,26 @@ constexpr double kLooseReduction = 0.1;
 // The P1 start stops at this relative KKT residual or when its active set repeats: the fine
 // loop only needs its active set and a good first iterate.
 constexpr double kP1Tolerance = 1e-6;
+// The energy solve's delay d: θ − rᵀx_k, the error left in rᵀx_k, is estimated by
+// rᵀx_{k+d} − rᵀx_k (Strakoš and Tichý's lower bound on CG's A-norm error, which is sharp
+// once the convergence is steady; with a multigrid preconditioner each iteration gains about
+// a digit, so four iterations more than cover the tail).
+constexpr std::size_t kEnergyDelay = 4;
 
 // When a KSP solve stops: KSPConvergedDefault first (a user's -ksp_rtol, -ksp_max_it,
 // divergence), then ‖r‖₂ ≤ target — or, for a loose step, ≤ max(target, reduction · ‖r₀‖₂) —
 // with the round-off floor 100 ε ‖A‖∞ ‖x‖∞ below which CG only stagnates.
+// An energy solve (KeptSolverOfA::energy) also stops when rhsᵀx has grown by at most
+// energy_tolerance over the last kEnergyDelay iterations.
 struct StoppingRule {
   double target = 0;
   double reduction = 0;  // > 0: a loose step
   double A_norm = 0;
   double initial = 0;
   void* default_test = nullptr;
+  Vec energy_rhs = nullptr;  // set: an energy solve
+  double energy_tolerance = 0;
+  std::vector<double> energies;  // rhsᵀx_k, k = 0, 1, …
 
   static PetscErrorCode test(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason, void* context) {
     PetscFunctionBeginUser;
@@ -42,6 +52,16 @@ struct StoppingRule {
     if (it == 0) rule.initial = rnorm;
     const double target = rule.reduction > 0 ? std::max(rule.target, rule.reduction * rule.initial) : rule.target;
     PetscCall(inner_stopping_rule(ksp, rnorm, target, rule.A_norm, reason));
+    if (rule.energy_rhs && *reason == KSP_CONVERGED_ITERATING) {
+      Vec x = nullptr;
+      PetscScalar energy = 0;
+      PetscCall(KSPBuildSolution(ksp, nullptr, &x));
+      PetscCall(VecDot(rule.energy_rhs, x, &energy));
+      rule.energies.push_back(energy);
+      const std::size_t n = rule.energies.size();
+      if (n > kEnergyDelay && rule.energies[n - 1] - rule.energies[n - 1 - kEnergyDelay] <= rule.energy_tolerance)
+        *reason = KSP_CONVERGED_ATOL;
+    }
     PetscFunctionReturn(0);
   }
 };
@@ -123,6 +143,16 @@ class KeptSolverOfA final : public SolverOfA {
     if (s.level.solve(rhs, x, target, 0.0, &iterations, &reason)) return false;
     s.iterations += iterations;
     return reason > 0;
+  }
+  bool energy(Vec rhs, Vec x, double force, double tolerance, double* theta) override {
+    FineState& s = *state_;
+    s.level.rule.energy_rhs = rhs;
+    s.level.rule.energy_tolerance = tolerance;
+    s.level.rule.energies.clear();
+    const bool solved = solve(rhs, x, force);
+    s.level.rule.energy_rhs = nullptr;
+    if (!solved || VecDot(rhs, x, theta)) return false;
+    return true;
   }
   long long iterations() const override { return state_->iterations; }
 

@@ -60,7 +60,14 @@ class SolverOfA {
  public:
   virtual ~SolverOfA() = default;
   virtual bool solve(Vec rhs, Vec x, double force) = 0;  // collective; false on failure
-  virtual long long iterations() const = 0;              // Krylov iterations of its solves
+  // θ = rhsᵀA⁻¹rhs (the certificate's rᵀK⁻¹r), by CG from x = 0. CG's rhsᵀx_k grows to θ
+  // (x_k minimises the energy on the Krylov space, so rhsᵀx_k = ‖x_k‖²_A), and θ − rhsᵀx_k =
+  // ‖x − x_k‖²_A; the solve stops at the inner rule above or as soon as rhsᵀx_k has grown by at
+  // most `tolerance` over the last few iterations (the error left, estimated): what the gap
+  // needs is θ to an absolute tolerance, which takes a few iterations where the inner rule takes
+  // tens. Collective; false on failure.
+  virtual bool energy(Vec rhs, Vec x, double force, double tolerance, double* theta) = 0;
+  virtual long long iterations() const = 0;  // Krylov iterations of its solves
 };
 
 struct BoundPdasResult {

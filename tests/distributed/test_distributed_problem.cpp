@@ -2,13 +2,16 @@
 // -n 1, 2, 4 together: its rows are the nodes' dim DOFs (block size dim), a prescribed DOF's row
 // holds only its diagonal, the rigid modes are orthonormal and vanish there, and the P2 → P1
 // interpolation reproduces a linear field exactly (the vertex values of u = M x give M x at every
-// free DOF, in the bound form's variables; x of a mid-edge node the middle of its edge).
+// free DOF, in the bound form's variables; x of a mid-edge node the middle of its edge). And the
+// loop's solver of A after the solve: the certificate's θ = bᵀA⁻¹b by its energy rule, against the
+// same product from a solve to the round-off.
 #include <mpi.h>
 
 #include <catch2/catch.hpp>
 
 #include "contactqp/processes.hpp"
 #include "contactqp/scene.hpp"
+#include "distributed/distributed_pdas.hpp"
 #include "distributed/distributed_problem.hpp"
 #include "test_support.hpp"
 
@@ -69,8 +72,8 @@ void check_problem(const Scene& scene) {
     }
   CHECK(worst < 1e-12);
 
-  // P (v-variables) times the vertex values of u = M x: T (M x) at the free DOFs, 0 at the
-  // prescribed ones.
+  // P (v-variables) times the vertex values of u = M x (a candidate vertex's in its variables,
+  // T (M x)): T (M x) at the free DOFs, 0 at the prescribed ones.
   REQUIRE(qp.coarse_interpolation);
   Eigen::Matrix3d M;
   M << 0.3, -1.1, 0.7, 2.0, 0.4, -0.5, -0.2, 0.9, 1.3;
@@ -83,7 +86,20 @@ void check_problem(const Scene& scene) {
   VecGetArray(coarse, &c);
   for (int node = 0; node < model.n_owned; ++node) {
     if (qp.vertex_of_node[node] < 0) continue;
-    const Eigen::Vector3d value = M * local.mesh.nodes[node];
+    Eigen::Vector3d value = M * local.mesh.nodes[node];
+    // A candidate vertex's columns are its own variables: T times its group's components.
+    const int t = qp.transform_of_node[node];
+    if (t >= 0) {
+      const detail::NodeTransform& transform = qp.transforms[t];
+      std::vector<int> component;
+      for (int column : transform.columns)
+        for (int d = 0; d < dim; ++d)
+          if (local.free_index[dim * node + d] == column) component.push_back(d);
+      Eigen::VectorXd group(component.size());
+      for (std::size_t a = 0; a < component.size(); ++a) group[a] = value[component[a]];
+      group = transform.T * group;
+      for (std::size_t a = 0; a < component.size(); ++a) value[component[a]] = group[a];
+    }
     for (int d = 0; d < dim; ++d) c[dim * qp.vertex_of_node[node] + d - first_column] = value[d];
   }
   VecRestoreArray(coarse, &c);
@@ -139,4 +155,46 @@ TEST_CASE("the distributed sphere's bound QP: block rows, prescribed rows, modes
 
 TEST_CASE("the distributed half disc's bound QP: block rows, prescribed rows, modes, P2 to P1", "[distributed]") {
   check_problem(small_scene("scenes/hertz.json"));
+}
+
+// The loop without bounds (--no-contact: one linear solve), then θ = bᵀA⁻¹b twice with its kept
+// solver of A: once at the inner rule (relative residual 1e-13 here: θ to the round-off), once by
+// the energy rule at 1e-6 θ, which must land within that of the first from below (CG's bᵀx_k
+// grows to θ) and take fewer iterations.
+TEST_CASE("the kept hierarchy's energy solve gives theta to its tolerance, from below, in fewer iterations",
+          "[distributed]") {
+  start_process_runtime();
+  const detail::DistributedModel model =
+      detail::build_distributed_model(small_scene("scenes/hertz-sphere.json"), BuildOptions());
+  const detail::DistributedBoundQp qp = detail::assemble_distributed_bound_qp(model);
+  detail::DistributedPdasOptions options;
+  options.tol = 1e-10;
+  options.without_bounds = true;
+  detail::DistributedPdasResult solved = detail::solve_distributed_pdas(qp, options);
+  REQUIRE(solved.status == Status::Converged);
+  CHECK(solved.iterations == 1);
+  CHECK(solved.active == 0);
+  CHECK(solved.mu.size() == qp.bounded.size());
+  REQUIRE(solved.solver_of_A);
+
+  Vec x = nullptr;
+  VecDuplicate(qp.b, &x);
+  PetscReal force = 0;
+  VecNorm(qp.b, NORM_INFINITY, &force);
+  REQUIRE(force > 0);
+  long long before = solved.solver_of_A->iterations();
+  REQUIRE(solved.solver_of_A->solve(qp.b, x, force));
+  const long long exact_iterations = solved.solver_of_A->iterations() - before;
+  PetscScalar exact = 0;
+  VecDot(qp.b, x, &exact);
+  REQUIRE(exact > 0);
+
+  before = solved.solver_of_A->iterations();
+  PetscScalar theta = 0;
+  REQUIRE(solved.solver_of_A->energy(qp.b, x, force, 1e-6 * exact, &theta));
+  const long long energy_iterations = solved.solver_of_A->iterations() - before;
+  CHECK(theta <= exact * (1 + 1e-12));
+  CHECK(exact - theta <= 1e-6 * exact);
+  CHECK(energy_iterations < exact_iterations);
+  VecDestroy(&x);
 }

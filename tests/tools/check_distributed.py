@@ -2,6 +2,7 @@
 """ctest entry for the distributed run (docs/petsc.md, "Distributed runs"): the petsc backend
 under `mpirun -n N` for each N of RANKS (default 1 2 4; on one process with --distributed)
 against one process of the serial path (today's code) on the same mesh. Checks, relative 1e-8:
+--no-contact (one linear solve by the distributed run's KSP and hierarchy) against one process's;
 u and the contact forces at every node (the ParaView arrays, matched by the nodes' coordinates,
 which are the same to the bit), the force, a (or b), p0, J; that each .pvtu opens in VTK
 (python3-vtk9) with exactly the one-process .vtu's points, cells and arrays; one summary, no
@@ -125,6 +126,30 @@ def main(cli, mpiexec, scene, workdir, *ranks):
     # coarse mesh) and cannot; a bad value.
     n = str(max(ranks))
     mpi = [mpiexec, "-n", n, "--oversubscribe"]
+
+    # --no-contact: the contact rows dropped, one linear solve of A by the distributed run's own
+    # KSP and hierarchy, against one process's linear solve (CHOLMOD) on the same mesh.
+    linear = [cli, "solve", scene, "--backend", "petsc", "--tol", "1e-10", "--quiet", "--no-contact"]
+    code, out, err = run(linear + ["--vtu", path("linear.vtu"), "--json", path("linear.json")], env)
+    check(code == 0, "--no-contact, one process: exit %d %s" % (code, err.strip()[-300:]))
+    code, out, err = run(mpi + linear + (["--distributed"] if n == "1" else []) +
+                         ["--vtu", path("linear-distributed.pvtu"), "--json", path("linear-distributed.json")], env)
+    check(code == 0, "--no-contact, distributed on %s: exit %d %s" % (n, code, err.strip()[-300:]))
+    if code == 0:
+        with open(path("linear.json")) as f:
+            serial = json.load(f)
+        with open(path("linear-distributed.json")) as f:
+            result = json.load(f)
+        check(result["no_contact"] and result["backend"] == "none" and result["contact"]["total_force"] == 0,
+              "--no-contact, distributed: reported as the linear solve (no contact force)")
+        check(abs(result["objective"] - serial["objective"]) <= TOL * abs(serial["objective"]),
+              "--no-contact, distributed: J %.12e against %.12e" % (result["objective"], serial["objective"]))
+        check("PETSc" not in out and "1 outer steps" in result["message"],
+              "--no-contact, distributed: one step (%s)" % result["message"])
+        points, arrays, _ = read(path("linear.vtu"))
+        their_points, theirs, _ = read(path("linear-distributed.pvtu"))
+        difference = relative(theirs["displacement"], arrays["displacement"]) if their_points == points else 1.0
+        check(difference <= TOL, "--no-contact, distributed: u agrees to %.2e" % difference)
     broken = path("broken-mesh.json")
     with open(path("broken.msh"), "w") as f:
         f.write("$MeshFormat\nnot a mesh\n")
