@@ -3,20 +3,23 @@
 work of docs/petsc.md ("The preconditioner", "The contact solve"), in one run so that the ratios
 compare on a shared machine. On one scene (default scenes/hertz-sphere-large.json), RANKS ranks:
 
-  before / after, whole run     [mpirun -n RANKS] contactqp solve SCENE
+  before / after, whole run     [mpirun -n RANKS] contactqp solve SCENE --backend petsc
   before / after, K alone       ... --no-contact --linear-solver petsc
   solvers of K (after build)    ... --no-contact --linear-solver petsc --petsc-options=...
-                                (P1 + GAMG, the default for quadratic elements; GAMG tuned;
-                                GAMG with PETSc's defaults; hypre BoomerAMG; ML)
+                                (P1 + GAMG, the default for quadratic elements; GAMG tuned,
+                                on K itself; GAMG with PETSc's defaults; hypre BoomerAMG, plain
+                                and nodal with interpolation vectors; ML; for quadratic
+                                elements the P1 level with BoomerAMG or ML below it)
 
 Each run under /usr/bin/time (peak resident set per rank). Prints one table: whole seconds,
 set-up (the preconditioner's, or the solver of K's), the solve, CG iterations, preconditioner
-set-ups, and for the contact runs the contact solve over the same build's linear solve.
+set-ups, for the contact runs the contact solve over the same build's linear solve, and the
+hierarchy's levels, grid and operator complexity (GAMG, ML and PCMG report them; hypre not).
 
 usage: benchmarks/petsc/multigrid.py AFTER_BUILD [BEFORE_BUILD] [--scene S] [--ranks N] [--out DIR]
        [--only contact|solvers]
-Heavy (at 1.27e6 DOFs: 7 GB per rank before, about 20 runs of 1-5 minutes): run it under
-`flock /work/coord/heavy.lock` on a shared machine."""
+Heavy (at 1.34e6 DOFs: 7 GB per rank before, about 20 runs of 1-5 minutes): run it on a quiet
+machine."""
 import argparse
 import json
 import os
@@ -27,16 +30,27 @@ import time
 SOURCE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 # The solvers of K compared (docs/petsc.md, "The preconditioner"); empty: the build's default.
+HYPRE = ("-pc_hypre_type boomeramg -pc_hypre_boomeramg_strong_threshold 0.5 -pc_hypre_boomeramg_coarsen_type HMIS "
+         "-pc_hypre_boomeramg_interp_type ext+i -pc_hypre_boomeramg_agg_nl 1 -pc_hypre_boomeramg_P_max 4")
+# BoomerAMG's systems options: nodal coarsening, and the rigid-body modes (the near-null space
+# contactqp sets) as interpolation vectors.
+NODAL = " -pc_hypre_boomeramg_nodal_coarsen 6 -pc_hypre_boomeramg_vec_interp_variant 3"
 SOLVERS = [
     ("default (P1 + GAMG for quadratic elements)", ""),
-    ("GAMG tuned on K", "-pc_type gamg -pc_gamg_threshold 0.02 -pc_gamg_aggressive_coarsening 1 "
-                        "-pc_gamg_coarse_eq_limit 1000 -pc_gamg_use_sa_esteig 0 -mg_levels_ksp_type chebyshev "
-                        "-mg_levels_pc_type jacobi -mg_levels_esteig_ksp_type cg"),
+    ("GAMG tuned, on K", "-pc_type gamg -pc_gamg_threshold 0.02 -pc_gamg_aggressive_coarsening 2 "
+                         "-pc_gamg_coarse_eq_limit 200 -pc_gamg_use_sa_esteig 0 -mg_levels_ksp_type chebyshev "
+                         "-mg_levels_pc_type jacobi -mg_levels_esteig_ksp_type cg"),
     ("GAMG, PETSc's defaults", "-pc_type gamg"),
-    ("hypre BoomerAMG", "-pc_type hypre -pc_hypre_type boomeramg -pc_hypre_boomeramg_strong_threshold 0.5 "
-                        "-pc_hypre_boomeramg_coarsen_type HMIS -pc_hypre_boomeramg_interp_type ext+i "
-                        "-pc_hypre_boomeramg_agg_nl 1 -pc_hypre_boomeramg_P_max 4"),
+    ("hypre BoomerAMG", "-pc_type hypre " + HYPRE),
+    ("hypre BoomerAMG, nodal + interpolation vectors", "-pc_type hypre " + HYPRE + NODAL),
     ("ML", "-pc_type ml -pc_ml_Threshold 0.02 -mg_levels_ksp_type chebyshev -mg_levels_pc_type jacobi"),
+]
+# Quadratic elements only: other AMGs below the P1 level (the P1 operator has block size dim,
+# so BoomerAMG's nodal coarsening sees whole vertices).
+P1_SOLVERS = [
+    ("P1 level + hypre BoomerAMG, nodal + interpolation vectors",
+     "-mg_coarse_pc_type hypre " + (HYPRE + NODAL).replace("-pc_hypre", "-mg_coarse_pc_hypre")),
+    ("P1 level + ML", "-mg_coarse_pc_type ml -mg_coarse_pc_ml_Threshold 0.02"),
 ]
 
 
@@ -45,7 +59,8 @@ def run(build, scene, ranks, out, name, extra):
     json_path = os.path.join(out, name + ".json")
     time_prefix = os.path.join(out, name + "-time")
     command = ["/bin/sh", "-c", 'exec /usr/bin/time -f %M -o "$0-${OMPI_COMM_WORLD_RANK:-0}.txt" "$@"', time_prefix,
-               os.path.join(build, "contactqp"), "solve", scene, "--json", json_path, "--quiet"] + extra
+               os.path.join(build, "contactqp"), "solve", scene, "--backend", "petsc", "--json", json_path,
+               "--quiet"] + extra
     if ranks > 1:
         command = ["mpirun", "-n", str(ranks), "--oversubscribe"] + command
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
@@ -86,6 +101,9 @@ def figures(result):
         "cg": solver.get("krylov_iterations", result.get("iterations", 0)),
         "setups": solver.get("preconditioner_setups", 1),
         "p0": (result.get("hertz") or {}).get("p0_numerical"),
+        "levels": solver.get("multigrid_levels"),
+        "grid": solver.get("grid_complexity"),
+        "operator": solver.get("operator_complexity"),
     }
 
 
@@ -110,30 +128,40 @@ def main():
             rows.append((label + ": contact run", contact, linear))
             rows.append((label + ": K alone", linear, None))
     if args.only != "contact":
-        for k, (label, options) in enumerate(SOLVERS):
+        solvers = list(SOLVERS)
+        for k in range(len(SOLVERS) + len(P1_SOLVERS)):
+            if k >= len(solvers):
+                break
+            label, options = solvers[k]
             extra = ["--no-contact", "--linear-solver", "petsc"]
             if options:
                 extra.append("--petsc-options=" + options)
-            rows.append(("K: " + label, run(args.after, args.scene, args.ranks, args.out, "solver-%d" % k, extra), None))
+            row = run(args.after, args.scene, args.ranks, args.out, "solver-%d" % k, extra)
+            rows.append(("K: " + label, row, None))
+            if k == 0 and row[0] and row[0].get("element_order") == 2:
+                solvers += P1_SOLVERS
 
     print("%s, %d ranks, seconds. solve: matrix into PETSc + preconditioner set-up(s) + iterations (K alone: "
           "the solver of K's set-up + its solve); setup: the preconditioner's (K alone and before: with the matrix "
           "copy); contact/linear: the contact run's solve over the same build's K-alone solve"
           % (os.path.basename(args.scene), args.ranks))
-    print("| run | status | wall | total | setup | solve | certify | CG its | PC set-ups | contact/linear | peak MB/rank |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| run | status | wall | total | setup | solve | certify | CG its | PC set-ups | contact/linear | "
+          "levels | grid cx | operator cx | peak MB/rank |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for label, (result, wall, peak), linear in rows:
         f = figures(result)
         if f is None:
-            print("| %s | failed (see %s) | %.1f | | | | | | | | %.0f |" % (label, args.out, wall, peak))
+            print("| %s | failed (see %s) | %.1f | | | | | | | | | | | %.0f |" % (label, args.out, wall, peak))
             continue
         ratio = ""
         g = figures(linear[0]) if linear else None
         if g and g["solve"] > 0:
             ratio = "%.2f" % (f["solve"] / g["solve"])
-        print("| %s | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %s | %s | %s | %.0f |" %
+        complexity = ["%d" % f["levels"] if f["levels"] else "–"] + \
+            ["%.2f" % f[key] if f[key] else "–" for key in ("grid", "operator")]
+        print("| %s | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %s | %s | %s | %s | %.0f |" %
               (label, f["status"], wall, f["total"], f["setup"], f["solve"], f["certify"], int(f["cg"]),
-               int(f["setups"]), ratio, peak))
+               int(f["setups"]), ratio, " | ".join(complexity), peak))
     return 0
 
 

@@ -64,7 +64,8 @@ PetscErrorCode solve(const DistributedBoundQp& problem, const DistributedPdasOpt
   settings.tol = options.tol;
   settings.max_iterations = options.max_iterations;
   settings.inexact = options.inexact && !options.without_bounds;
-  settings.p1_start = !options.without_bounds;
+  settings.loose_reduction = options.loose_reduction;
+  settings.p1_start = options.p1_start && !options.without_bounds;
   // Without bounds nothing but stationarity is left, and the inner rule holds that.
   settings.residual = options.without_bounds ? [](Vec, const std::vector<double>&) { return 0.0; } : options.residual;
   const PetscErrorCode code = solve_bound_pdas(qp, settings, solved, options_error);
@@ -95,6 +96,9 @@ DistributedPdasResult& DistributedPdasResult::operator=(DistributedPdasResult&& 
   std::swap(method, other.method);
   std::swap(matrix_bytes, other.matrix_bytes);
   std::swap(petsc_bytes, other.petsc_bytes);
+  std::swap(multigrid_levels, other.multigrid_levels);
+  std::swap(grid_complexity, other.grid_complexity);
+  std::swap(operator_complexity, other.operator_complexity);
   std::swap(warnings, other.warnings);
   std::swap(solver_of_A, other.solver_of_A);
   return *this;
@@ -138,6 +142,9 @@ DistributedPdasResult solve_distributed_pdas(const DistributedBoundQp& qp, const
     result.iterate_seconds = solved.iterate_seconds;
     result.method = solved.method;
     result.solver_of_A = solved.solver_of_A;
+    result.multigrid_levels = solved.multigrid.levels;
+    result.grid_complexity = solved.multigrid.grid_complexity;
+    result.operator_complexity = solved.multigrid.operator_complexity;
     double mine[2] = {matrix_bytes(qp.A), petsc_bytes};
     MPI_Allreduce(MPI_IN_PLACE, mine, 2, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
     result.matrix_bytes = mine[0];

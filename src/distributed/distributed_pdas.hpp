@@ -22,7 +22,9 @@ struct DistributedPdasOptions {
   double tol = 1e-8;
   int max_iterations = 10000;
   std::string petsc_options;
-  bool inexact = true;  // loose CG solves while the active set changes
+  bool inexact = true;           // loose CG solves while the active set changes
+  double loose_reduction = 0.1;  // a loose step's CG reduces its residual by this factor
+  bool p1_start = true;          // quadratic elements: the P1 contact problem first
   // --no-contact: the bounds dropped, so the loop is one linear solve A v = b by the same KSP
   // and hierarchy, at the final rule (the contact solve's reference; μ = 0 at every bound).
   bool without_bounds = false;
@@ -44,6 +46,8 @@ struct DistributedPdasResult {
   double setup_seconds = 0, iterate_seconds = 0;
   std::string method;
   double matrix_bytes = 0, petsc_bytes = 0;  // the largest rank's: A, and A with the hierarchy
+  int multigrid_levels = 0;                  // the hierarchy's, P1 level included (0: no multilevel preconditioner)
+  double grid_complexity = 0, operator_complexity = 0;  // its rows and nonzeros over A's
   std::vector<std::string> warnings;
   // The loop's hierarchy, for the certificate's one solve with A (θ): no second set-up.
   std::shared_ptr<SolverOfA> solver_of_A;

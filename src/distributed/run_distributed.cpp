@@ -6,6 +6,7 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <sstream>
 
 #include "backend_options.hpp"
 #include "contactqp/backend.hpp"
@@ -25,7 +26,8 @@ namespace {
 
 // The petsc backend's options (petsc_backend.cpp reads and checks the same keys; they were
 // validated before this runs): unaddressed keys and "petsc.key". A distributed run solves by the
-// kept hierarchy's pdas (hierarchy=kept), with the P1 start for quadratic elements.
+// kept hierarchy's pdas (hierarchy=kept), with the P1 start for quadratic elements unless
+// p1_start=false.
 DistributedPdasOptions pdas_options(const SolveOptions& options) {
   DistributedPdasOptions out;
   out.tol = options.tol;
@@ -33,6 +35,8 @@ DistributedPdasOptions pdas_options(const SolveOptions& options) {
   out.petsc_options = petsc_options_of(options.library_options);
   for (const auto& [key, value] : options_for(Backend::Petsc, options.backend_options)) {
     if (key == "inexact") out.inexact = value == "true" || value == "1";
+    if (key == "p1_start") out.p1_start = value == "true" || value == "1";
+    if (key == "loose_reduction") out.loose_reduction = parse_number(value, option_field(key));
     if (key == "method" && value != "pdas")
       throw InputError("backend option method", "= \"" + value + "\": a distributed run (mpirun) solves by pdas only");
     if (key == "hierarchy" && value != "kept")
@@ -59,16 +63,27 @@ SolveResult solve_result(const DistributedPdasResult& solved, const DistributedM
   d["kkt_residual"] = solved.residual;
   d["petsc_matrix_mb_per_rank"] = solved.matrix_bytes / 1048576.0;
   d["petsc_memory_mb_per_rank"] = solved.petsc_bytes / 1048576.0;
+  if (solved.multigrid_levels > 0) {
+    d["multigrid_levels"] = solved.multigrid_levels;
+    d["grid_complexity"] = solved.grid_complexity;
+    d["operator_complexity"] = solved.operator_complexity;
+  }
   d["distributed"] = 1;
   d["ranks"] = process_count();
   d["dofs_this_rank"] = model.n_own_dofs;
+  std::ostringstream levels;
+  levels.precision(3);
+  if (solved.multigrid_levels > 0)
+    levels << "; multigrid " << solved.multigrid_levels << " levels, grid complexity " << solved.grid_complexity
+           << ", operator complexity " << solved.operator_complexity;
+  const std::string multigrid = levels.str();
   const std::string how = solved.method + "; " + std::to_string(solved.iterations) + " outer steps, " +
                           std::to_string(solved.krylov_iterations) + " Krylov iterations" +
                           (solved.preconditioner_setups > 0
                                ? ", " + std::to_string(solved.preconditioner_setups) + " preconditioner set-ups"
                                : std::string()) +
                           "; " + std::to_string(model.n_global_candidates) + " candidate rows, " +
-                          std::to_string(solved.active) + " in contact; A " +
+                          std::to_string(solved.active) + " in contact" + multigrid + "; A " +
                           short_number(solved.matrix_bytes / 1048576.0) + " MiB per rank" +
                           (verbose ? "; PETSc memory per rank " + short_number(solved.petsc_bytes / 1048576.0) +
                                          " MiB (A, its working copy and the preconditioner)"

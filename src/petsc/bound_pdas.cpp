@@ -17,10 +17,7 @@ namespace contactqp::detail {
 namespace {
 
 // The inner rule and its round-off floor: kInnerFraction and kRoundOff, ksp_helpers.hpp.
-// A loose step reduces its own initial residual tenfold (never below the final rule): the
-// active set's next guess needs the step's direction, not its digits. Measured on the spheres:
-// 2–4 CG iterations a step, against 4–12 with a target tied to the KKT residual.
-constexpr double kLooseReduction = 0.1;
+// A loose step's reduction: BoundPdasOptions::loose_reduction.
 // The P1 start stops at this relative KKT residual or when its active set repeats: the fine
 // loop only needs its active set and a good first iterate.
 constexpr double kP1Tolerance = 1e-6;
@@ -192,7 +189,8 @@ struct LoopSettings {
   double tol = 1e-8;
   int max_iterations = 10000;
   bool inexact = true;
-  bool final_steps = true;  // false (the P1 start): stop at tol or a repeated set, no final-rule step
+  double loose_reduction = 0.1;  // a loose step's CG: its own residual times this
+  bool final_steps = true;       // false (the P1 start): stop at tol or a repeated set, no final-rule step
   std::function<double(Vec v, const std::vector<double>& mu)> residual;
 };
 
@@ -247,7 +245,7 @@ PetscErrorCode active_set_loop(const LevelProblem& level, LevelSolver& solver, T
     const bool solved_tight = tight;
     PetscInt iterations = 0;
     KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
-    PetscCall(solver.solve(rhs, x, final_target, solved_tight ? 0.0 : kLooseReduction, &iterations, &reason));
+    PetscCall(solver.solve(rhs, x, final_target, solved_tight ? 0.0 : settings.loose_reduction, &iterations, &reason));
     outcome->krylov_iterations += iterations;
     outcome->steps = k;
     if (reason < 0) {
@@ -367,6 +365,7 @@ PetscErrorCode p1_start(const PetscBoundQp& qp, const FineState& fine, const Bou
   settings.tol = kP1Tolerance;
   settings.max_iterations = options.max_iterations;
   settings.inexact = true;
+  settings.loose_reduction = options.loose_reduction;
   settings.final_steps = false;
   // The P1 problem's own residual: primal violation, negative multipliers and complementarity
   // over its scales, as the fine one's but on P1 data.
@@ -532,6 +531,7 @@ PetscErrorCode solve_bound_pdas(const PetscBoundQp& qp, const BoundPdasOptions& 
   settings.tol = options.tol;
   settings.max_iterations = options.max_iterations;
   settings.inexact = options.inexact;
+  settings.loose_reduction = options.loose_reduction;
   settings.residual = options.residual;
   LoopOutcome outcome;
   PetscCall(active_set_loop(level, fine->level, fine->truncation.active() ? &fine->truncation : nullptr, settings,

@@ -46,8 +46,12 @@ struct BoundPdasOptions {
   double tol = 1e-8;
   int max_iterations = 10000;  // active-set steps on the fine level
   bool inexact = true;         // loose steps while the active set changes
-  bool p1_start = true;        // solve the P1 contact problem first (quadratic elements)
-  bool truncate = true;        // the coarse operators follow the fixed rows (truncation.hpp)
+  // A loose step's CG reduces its own initial residual by this factor (never below the final
+  // rule): the next active set needs the step's direction, not its digits. 0.1 measured best
+  // (docs/petsc.md, "Inexact steps"); 2–4 CG iterations a step.
+  double loose_reduction = 0.1;
+  bool p1_start = true;  // solve the P1 contact problem first (quadratic elements)
+  bool truncate = true;  // the coarse operators follow the fixed rows (truncation.hpp)
   // The relative KKT residual without stationarity (certificate.hpp's scales) of v and μ (this
   // rank's rows and bounds); collective, the global value. The loop ends when it is ≤ tol after
   // a step solved at the final rule.

@@ -22,12 +22,13 @@ struct MultigridData {
 };
 
 // The PETSc options every solver of A starts from (set_up_multigrid() puts them in the
-// database for its set-up); the user's --petsc-options win. Smoothing by Chebyshev on Jacobi with CG eigenvalue estimates
-// (PETSc's own advice for elasticity, src/snes/tutorials/ex56.c); on the P1 level GAMG with a
-// square graph on its first level (the cheap set-up), threshold 0.02, at most 1000 equations on
-// the coarsest level, and eigenvalues estimated by the smoothers themselves, so that the
-// estimates follow the operators when the active rows change them (truncation.hpp).
-extern const char* const kMultigridOptions[4][2];  // {name without "-" and prefix, value}
+// database for its set-up); the user's --petsc-options win. Smoothing by Chebyshev on Jacobi
+// with CG eigenvalue estimates (PETSc's own advice for elasticity, src/snes/tutorials/ex56.c);
+// GAMG (on A, or below the P1 level: prefix mg_coarse_) with the graph squared on its first two
+// levels and at most 200 equations on the coarsest level (multigrid.cpp says why). These two
+// are options, not PCGAMGSet...() calls: PETSc 3.18's PCSetFromOptions puts its own default
+// back over PCGAMGSetAggressiveLevels() (measured: 4 levels instead of 3, the set-up 3× dearer).
+extern const char* const kMultigridOptions[8][2];  // {name without "-" and prefix, value}
 
 struct MultigridStatistics {
   std::string method;  // "mg: P1 level + gamg", "gamg", or the user's -pc_type

@@ -23,7 +23,8 @@ namespace {
 
 // The backend options: method=pdas|tao; for pdas hierarchy=kept|fresh (one multigrid
 // hierarchy for the whole solve, or a set-up per step), p1_start=true|false (kept: the P1
-// contact problem first), inexact=true|false (loose early steps) and, with fresh,
+// contact problem first), inexact=true|false (loose early steps), loose_reduction=r (kept: a
+// loose step's CG reduces its residual r times, 0 < r < 1) and, with fresh,
 // reuse_preconditioner=true|false (a step's GAMG kept while its solves stay short).
 BoundQpOptions backend_settings(const SolveOptions& options) {
   BoundQpOptions settings;
@@ -43,10 +44,14 @@ BoundQpOptions backend_settings(const SolveOptions& options) {
                    : key == "p1_start" ? settings.p1_start
                                        : settings.reuse_preconditioner;
       flag = value == "true" || value == "1";
+    } else if (key == "loose_reduction") {
+      settings.loose_reduction = parse_number(value, option_field(key));
+      if (!(settings.loose_reduction > 0 && settings.loose_reduction < 1))
+        throw InputError(option_field(key), "= \"" + value + "\": must be between 0 and 1 (exclusive)");
     } else {
       throw InputError(option_field(key), "= \"" + value +
                                               "\": not an option of petsc; valid: method, hierarchy, p1_start, "
-                                              "inexact, reuse_preconditioner");
+                                              "inexact, loose_reduction, reuse_preconditioner");
     }
   }
   return settings;
@@ -192,7 +197,7 @@ CONTACTQP_BUILTIN(petsc) {
   petsc.name = "petsc";
   petsc.summary = "the bound form solved by PETSc (active set with KSP solves, or TAO), under mpirun too";
   petsc.order = 60;
-  petsc.option_names = {"method", "hierarchy", "p1_start", "inexact", "reuse_preconditioner"};
+  petsc.option_names = {"method", "hierarchy", "p1_start", "inexact", "loose_reduction", "reuse_preconditioner"};
   petsc.check_options = check_petsc_options;
 #ifdef CONTACTQP_HAVE_PETSC  // set by CMake when PETSc was found (CONTACTQP_WITH_PETSC)
   petsc.solve = [](const QuadraticProgram& qp, const SolveOptions& options) {

@@ -467,6 +467,7 @@ void solve_kept(Work& work, const BoundQp& problem, const BoundQpOptions& option
   settings.tol = options.tol;
   settings.max_iterations = options.max_iterations;
   settings.inexact = options.inexact;
+  settings.loose_reduction = options.loose_reduction;
   settings.p1_start = options.p1_start;
   int step = 0;
   settings.residual = [&](Vec v, const std::vector<double>& mu_mine) {

@@ -48,6 +48,8 @@ struct BoundQpOptions {
   // pdas: inexact steps (looser KSP solves while the active set still changes, the final
   // steps at the inner rule); false solves every step at the inner rule.
   bool inexact = true;
+  // pdas, kept hierarchy: a loose step's CG reduces its residual by this factor, in (0, 1).
+  double loose_reduction = 0.1;
   // pdas: keep a step's preconditioner for the later steps until a solve with it needs more
   // than 200 CG iterations, or fails (false: every step set up afresh, the default). Much
   // faster in 3D, where the set-ups are the cost; off by default because the path of the

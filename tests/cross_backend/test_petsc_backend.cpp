@@ -31,6 +31,14 @@ SolveOptions petsc_options(double tol, const std::string& petsc = "", const std:
   return options;
 }
 
+// r converged to the reference's answer: u to 1e-6 and λ to 1e-5 relative.
+void check_same_answer(const SolveResult& r, const SolveResult& reference) {
+  CAPTURE(r.message);
+  REQUIRE(r.status == Status::Converged);
+  CHECK(relative_difference(r.u, reference.u) <= 1e-6);
+  CHECK(relative_difference(r.lambda, reference.lambda) <= 1e-5);
+}
+
 }  // namespace
 
 TEST_CASE("petsc agrees with active_set on the shipped scenes, 2D and 3D", "[cross_backend][petsc][hertz]") {
@@ -79,10 +87,7 @@ TEST_CASE("petsc agrees with active_set on the shipped scenes, 2D and 3D", "[cro
   SolveOptions fresh = petsc_options(tol);
   fresh.backend_options["hierarchy"] = "fresh";
   const SolveResult k = solve(qp, fresh);
-  CAPTURE(k.message);
-  REQUIRE(k.status == Status::Converged);
-  CHECK(relative_difference(k.u, reference.u) <= 1e-6);
-  CHECK(relative_difference(k.lambda, reference.lambda) <= 1e-5);
+  check_same_answer(k, reference);
   CHECK(certify(qp, k.u, k.lambda).kkt_max() <= 10 * tol);
   CHECK(k.diagnostics.at("preconditioner_setups") == k.diagnostics.at("linear_solves"));
 }
@@ -93,11 +98,8 @@ TEST_CASE("petsc's alternative, TAO's bounded Newton on the same bound form, giv
   const QuadraticProgram qp = scene_qp("scenes/hertz.json");
   const SolveResult reference = solve(qp, options_for(Backend::ActiveSet, 1e-10));
   const SolveResult r = solve(qp, petsc_options(1e-10, "", "tao"));
-  CAPTURE(r.message);
-  REQUIRE(r.status == Status::Converged);
+  check_same_answer(r, reference);
   CHECK_THAT(r.message, Catch::Matchers::Contains("tao bnls"));
-  CHECK(relative_difference(r.u, reference.u) <= 1e-6);
-  CHECK(relative_difference(r.lambda, reference.lambda) <= 1e-5);
 }
 
 TEST_CASE("the petsc backend: divergence, unused and bad options, unavailability", "[petsc]") {
@@ -124,6 +126,17 @@ TEST_CASE("the petsc backend: divergence, unused and bad options, unavailability
                       Catch::Matchers::StartsWith("petsc_options = \"-ksp_type nonsense\""));
     CHECK_THROWS_WITH(solve(qp, petsc_options(1e-8, "", "simplex")),
                       Catch::Matchers::Contains("method") && Catch::Matchers::Contains("valid: pdas, tao"));
+  }
+  SECTION("loose_reduction changes the path, not the answer; outside (0, 1) it is bad input") {
+    const SolveResult reference = solve(qp, options_for(Backend::ActiveSet, 1e-10));
+    SolveOptions loose = petsc_options(1e-10);
+    loose.backend_options["loose_reduction"] = "0.5";
+    check_same_answer(solve(qp, loose), reference);
+    for (const char* bad : {"1", "0", "-0.1", "ten"}) {
+      INFO(bad);
+      loose.backend_options["loose_reduction"] = bad;
+      CHECK_THROWS_WITH(solve(qp, loose), Catch::Matchers::StartsWith("backend option loose_reduction"));
+    }
   }
 }
 
