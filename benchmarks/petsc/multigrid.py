@@ -54,12 +54,12 @@ P1_SOLVERS = [
 ]
 
 
-def run(build, scene, ranks, out, name, extra):
+def run(build, scene, ranks, out, name, extra, backend="petsc"):
     """One contactqp run; returns (its JSON, wall seconds, peak MB of the largest rank)."""
     json_path = os.path.join(out, name + ".json")
     time_prefix = os.path.join(out, name + "-time")
     command = ["/bin/sh", "-c", 'exec /usr/bin/time -f %M -o "$0-${OMPI_COMM_WORLD_RANK:-0}.txt" "$@"', time_prefix,
-               os.path.join(build, "contactqp"), "solve", scene, "--backend", "petsc", "--json", json_path,
+               os.path.join(build, "contactqp"), "solve", scene, "--backend", backend, "--json", json_path,
                "--quiet"] + extra
     if ranks > 1:
         command = ["mpirun", "-n", str(ranks), "--oversubscribe"] + command

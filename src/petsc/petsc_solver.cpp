@@ -186,6 +186,18 @@ bool PetscSolver::Impl::set_up(const Eigen::SparseMatrix<double>& K, const Linea
   KSPSetTolerances(ksp, 0.0, 0.0, PETSC_DEFAULT, kMaxKrylovIterations);  // only the inner rule stops
   KSPConvergedDefaultCreate(&default_test);
   KSPSetConvergenceTest(ksp, converged, this, nullptr);
+  // hypre 2.26's BoomerAMG with interpolation vectors ends this process with a segmentation
+  // fault on this K (in hypre_BoomerAMG_LNExpandInterp, scenes/hertz-sphere.json), where the
+  // petsc backend's A takes them: refused as bad input before hypre sees them.
+  PetscBool vector_interpolation = PETSC_FALSE;
+  PetscOptionsHasName(nullptr, nullptr, "-pc_hypre_boomeramg_vec_interp_variant", &vector_interpolation);
+  if (vector_interpolation) {
+    options_error = true;
+    message =
+        "-pc_hypre_boomeramg_vec_interp_variant: hypre 2.26 crashes with it on the PETSc solver of K "
+        "(--linear-solver petsc); the petsc backend (--backend petsc) takes it";
+    return false;
+  }
   Stopwatch clock;
   MultigridStatistics multigrid;
   // Linear elements: PETSc's GAMG as before (its defaults; the tuned settings measured no

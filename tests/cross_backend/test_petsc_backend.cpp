@@ -150,6 +150,13 @@ TEST_CASE("the CLI: --backend petsc, and a bad --linear-solver is bad input", "[
   const CliRun run = run_cli("solve " + scene + " --backend petsc --tol 1e-10");
   CHECK(run.exit_status == 0);
   CHECK_THAT(run.out, Catch::Matchers::Contains("Krylov iterations"));
+  // An option that ends the process inside hypre 2.26 on the PETSc solver of K: bad input.
+  const CliRun crash = run_cli("solve " + scene +
+                               " --no-contact --linear-solver petsc --petsc-options=\"-pc_type hypre "
+                               "-pc_hypre_boomeramg_vec_interp_variant 3\"");
+  CHECK(crash.exit_status == 2);
+  CHECK(std::count(crash.err.begin(), crash.err.end(), '\n') == 1);
+  CHECK_THAT(crash.err, Catch::Matchers::Contains("vec_interp_variant"));
 }
 
 TEST_CASE("K in rank shares: the shares of two ranks sum to the whole K, f stays whole, the rows are a permutation",
