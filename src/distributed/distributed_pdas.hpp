@@ -22,9 +22,9 @@ struct DistributedPdasOptions {
   double tol = 1e-8;
   int max_iterations = 10000;
   std::string petsc_options;
-  bool inexact = true;           // loose CG solves while the active set changes
-  double loose_reduction = 0.1;  // a loose step's CG reduces its residual by this factor
-  bool p1_start = true;          // quadratic elements: the P1 contact problem first
+  bool inexact = true;                       // loose CG solves while the active set changes
+  double loose_reduction = kLooseReduction;  // a loose step's CG reduces its residual by this factor
+  bool p1_start = true;                      // quadratic elements: the P1 contact problem first
   // --no-contact: the bounds dropped, so the loop is one linear solve A v = b by the same KSP
   // and hierarchy, at the final rule (the contact solve's reference; μ = 0 at every bound).
   bool without_bounds = false;

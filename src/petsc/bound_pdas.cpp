@@ -17,7 +17,7 @@ namespace contactqp::detail {
 namespace {
 
 // The inner rule and its round-off floor: kInnerFraction and kRoundOff, ksp_helpers.hpp.
-// A loose step's reduction: BoundPdasOptions::loose_reduction.
+// A loose step's reduction: kLooseReduction, bound_pdas.hpp.
 // The P1 start stops at this relative KKT residual or when its active set repeats: the fine
 // loop only needs its active set and a good first iterate.
 constexpr double kP1Tolerance = 1e-6;
@@ -189,8 +189,8 @@ struct LoopSettings {
   double tol = 1e-8;
   int max_iterations = 10000;
   bool inexact = true;
-  double loose_reduction = 0.1;  // a loose step's CG: its own residual times this
-  bool final_steps = true;       // false (the P1 start): stop at tol or a repeated set, no final-rule step
+  double loose_reduction = kLooseReduction;
+  bool final_steps = true;  // false (the P1 start): stop at tol or a repeated set, no final-rule step
   std::function<double(Vec v, const std::vector<double>& mu)> residual;
 };
 

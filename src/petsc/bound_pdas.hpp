@@ -42,16 +42,19 @@ struct PetscBoundQp {
   std::vector<PetscInt> coarse_bounded;
 };
 
+// A loose step's CG reduces its own initial residual by this factor (never below the final
+// rule): the next active set needs the step's direction, not its digits. 0.1 measured best
+// (docs/petsc.md, "Inexact steps"); 2–4 CG iterations a step. The backend option
+// loose_reduction changes it.
+constexpr double kLooseReduction = 0.1;
+
 struct BoundPdasOptions {
   double tol = 1e-8;
-  int max_iterations = 10000;  // active-set steps on the fine level
-  bool inexact = true;         // loose steps while the active set changes
-  // A loose step's CG reduces its own initial residual by this factor (never below the final
-  // rule): the next active set needs the step's direction, not its digits. 0.1 measured best
-  // (docs/petsc.md, "Inexact steps"); 2–4 CG iterations a step.
-  double loose_reduction = 0.1;
-  bool p1_start = true;  // solve the P1 contact problem first (quadratic elements)
-  bool truncate = true;  // the coarse operators follow the fixed rows (truncation.hpp)
+  int max_iterations = 10000;                // active-set steps on the fine level
+  bool inexact = true;                       // loose steps while the active set changes
+  double loose_reduction = kLooseReduction;  // a loose step's CG: its own residual times this
+  bool p1_start = true;                      // solve the P1 contact problem first (quadratic elements)
+  bool truncate = true;                      // the coarse operators follow the fixed rows (truncation.hpp)
   // The relative KKT residual without stationarity (certificate.hpp's scales) of v and μ (this
   // rank's rows and bounds); collective, the global value. The loop ends when it is ≤ tol after
   // a step solved at the final rule.
