@@ -5,8 +5,28 @@
 #   3. the libFuzzer targets, built with clang (build-fuzz/): the scene parser from the shipped
 #      scenes and the mesh-file reader from the shipped scenes' meshes, 30 s each.
 # Any failure, sanitizer report or fuzzer finding stops the script with a non-zero status.
+#
+# Options:
+#   --kernels "CORE:THREADS ..."  after stage 1's suite, run its numeric entries again under each
+#                  OpenBLAS kernel CORE (OPENBLAS_CORETYPE) with THREADS BLAS threads
+#                  (OPENBLAS_NUM_THREADS); a kernel this CPU cannot run is skipped with a line.
+#                  Default "Prescott:1" (the oldest kernels, one thread: stage 1 itself runs the
+#                  CPU's own kernels on every core). "all" is "Prescott:1 Prescott:2 Haswell:1
+#                  Haswell:2 Zen:1 Zen:2 SkylakeX:1 SkylakeX:2"; "none" runs no rerun. An
+#                  assertion that holds under one kernel and fails under another depends on
+#                  round-off, not on what the code guarantees (docs/extremes.md, "Floating-point
+#                  kernels").
 set -eu
 cd "$(dirname "$0")/.."
+kernels="Prescott:1"
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --kernels) [ $# -ge 2 ] || { echo "run-tests: --kernels needs a value" >&2; exit 2; }; kernels=$2; shift 2 ;;
+    *) echo "run-tests: unknown option $1 (valid: --kernels \"CORE:THREADS ...\" | all | none)" >&2; exit 2 ;;
+  esac
+done
+[ "$kernels" = all ] && kernels="Prescott:1 Prescott:2 Haswell:1 Haswell:2 Zen:1 Zen:2 SkylakeX:1 SkylakeX:2"
+[ "$kernels" = none ] && kernels=""
 jobs=2
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
@@ -31,10 +51,46 @@ run_ctest() {
   passed=$((passed + count))
 }
 
+# Whether this CPU runs OpenBLAS's kernel $1 (the instructions it needs, from /proc/cpuinfo).
+cpu_runs() {
+  case "$1" in
+    Prescott) need=pni ;;
+    Haswell|Zen) need="avx2 fma" ;;
+    SkylakeX) need=avx512f ;;
+    *) return 1 ;;
+  esac
+  for flag in $need; do
+    grep -qw "$flag" /proc/cpuinfo || return 1
+  done
+}
+
+# The kernels asked for, checked before any work.
+for kernel in $kernels; do
+  case "$kernel" in
+    *:*[!0-9]*|*:) echo "run-tests: --kernels: \"$kernel\": THREADS must be a whole number" >&2; exit 2 ;;
+    Prescott:[1-9]*|Haswell:[1-9]*|Zen:[1-9]*|SkylakeX:[1-9]*) ;;
+    *) echo "run-tests: --kernels: \"$kernel\" is not CORE:THREADS (CORE Prescott, Haswell, Zen or SkylakeX)" >&2; exit 2 ;;
+  esac
+done
+
 echo "== 1/3 Release build and tests"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j$jobs
 run_ctest build
+# The same build's numeric entries under other BLAS kernels and thread counts: every number the
+# suite asserts must hold whichever kernel rounded it. Left out: the bad-input cases (label
+# input: words and exit codes), the checks of the source tree and of the installed package, and
+# the large cases (the smaller ones run the same code).
+for kernel in $kernels; do
+  core=${kernel%:*}
+  threads=${kernel#*:}
+  if ! cpu_runs "$core"; then
+    echo "run-tests: this CPU cannot run OpenBLAS's $core kernels: skipped"
+    continue
+  fi
+  echo "== 1/3 the numeric entries again with OPENBLAS_CORETYPE=$core OPENBLAS_NUM_THREADS=$threads"
+  OPENBLAS_CORETYPE=$core OPENBLAS_NUM_THREADS=$threads run_ctest build -LE 'large|sources|input|install'
+done
 stage_done 1
 
 echo "== 2/3 AddressSanitizer + UndefinedBehaviorSanitizer build and tests"

@@ -128,6 +128,10 @@ std::string scaled_msh22(const std::string& text, double l) {
   return out.str();
 }
 
+// How far an iterative method's count may move under a change of units that is exact in
+// arithmetic (docs/extremes.md, "Units"): 10 % of the count plus 2.
+int iteration_slack(int iterations) { return 2 + iterations / 10; }
+
 }  // namespace
 
 TEST_CASE("units: E × 1e±9 and lengths × 1e±3 give the same scaled answer on every backend",
@@ -177,12 +181,16 @@ TEST_CASE("units: E × 1e±9 and lengths × 1e±3 give the same scaled answer on
       const Run other = run(scene.dump(), backend, 1e-8, source);
       REQUIRE(base.result.status == Status::Converged);
       REQUIRE(other.result.status == Status::Converged);
-      // petsc's loose steps stop on a residual reduction of an iterative solve, whose round-off
-      // does not scale with the units: on the nearly incompressible case (ν = 0.499) E × 1e-9
-      // moves one active-set change past a loose step (4 steps against 3). The answer is still
-      // checked to 1e-6 below.
-      const int allowed = backend == Backend::Petsc ? 1 : 0;
-      CHECK(std::abs(other.result.iterations - base.result.iterations) <= allowed);
+      // The scaled QP equals the unscaled one only up to round-off (the mesh's coordinates, K's
+      // entries and the internal scaling are not exact powers of two), so an iterative method's
+      // count — the first iterate whose residual passes tol, or for petsc the loose steps' active
+      // sets — may move by a few where the residual or an inexact inner solve sits near its
+      // threshold; which kernel rounded decides (docs/extremes.md, "Units"). What the scaling
+      // guarantees is the same method on the same problem: a count within
+      // iteration_slack() of the unscaled one, where a scaling the solver did not undo would change
+      // ρ, the Krylov tolerances or the stopping test by the factor itself (many times the count,
+      // or no convergence).
+      CHECK(std::abs(other.result.iterations - base.result.iterations) <= iteration_slack(base.result.iterations));
       CHECK(relative_error(other.contact.half_width / l, base.contact.half_width) <= 1e-6);
       CHECK(relative_error(other.contact.max_pressure / e, base.contact.max_pressure) <= 1e-6);
       CHECK(relative_error(other.contact.total_force / (e * l), base.contact.total_force) <= 1e-6);

@@ -102,10 +102,13 @@ TEST_CASE("full sliding: the friction force is mu times the normal force and eve
   CHECK(plane.friction->stick_nodes == 0);
   CHECK(plane.friction->slip_nodes == plane.contact_nodes);
   // Before it slides the block sticks at its middle: the tangential force grows with the shear.
+  // Once it slides, Q = μP in every later step, equal in exact arithmetic: a step's Q may then
+  // round below the last one's (by one unit in the last place under some BLAS kernels), so the
+  // growth is asked within the accuracy asked of μP above.
   double last = 0;
   for (size_t k = 1; k < report.steps.size(); ++k) {
     const double Q = report.steps[k].contact.tangential_force;
-    CHECK(Q >= last);
+    CHECK(Q >= last * (1 - 1e-8));
     last = Q;
   }
   CHECK(report.steps[1].contact.obstacles[0].friction->stick_nodes > 0);
