@@ -27,5 +27,7 @@ std::shared_ptr<const LinearSolver> factor_of_K(const QuadraticProgram& qp, cons
 // The solver of K's Krylov iterations and solves into result.diagnostics (iterative solvers
 // only: "krylov_iterations", "linear_solves") and its warnings into result.warnings.
 void report_linear_solver(SolveResult& result);
+// The same with the statistics taken at a chosen moment (before the certificate solved with K).
+void report_linear_solver(SolveResult& result, const LinearSolverStatistics& statistics);
 
 }  // namespace contactqp::detail

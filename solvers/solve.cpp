@@ -8,8 +8,11 @@
 #include "backends.hpp"
 #include "cleanup.hpp"
 #include "contactqp/backend.hpp"
+#include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/solve.hpp"
+#include "qp/no_solution.hpp"
+#include "qp/number_format.hpp"
 #include "qp/words.hpp"
 #include "scaling.hpp"
 #include "solve_steps.hpp"
@@ -49,9 +52,12 @@ std::shared_ptr<const LinearSolver> factor_of_K(const QuadraticProgram& qp, cons
 }
 
 void report_linear_solver(SolveResult& result) {
+  if (result.K_factor) report_linear_solver(result, result.K_factor->statistics());
+}
+
+void report_linear_solver(SolveResult& result, const LinearSolverStatistics& statistics) {
   if (!result.K_factor) return;
   // An iterative solver of K: its inner (Krylov) iterations and solves since its set-up.
-  const LinearSolverStatistics statistics = result.K_factor->statistics();
   if (statistics.iterations > 0) {
     result.diagnostics["krylov_iterations"] = static_cast<double>(statistics.iterations);
     result.diagnostics["linear_solves"] = static_cast<double>(statistics.solves);
@@ -120,8 +126,153 @@ void check_solve_options(const SolveOptions& options) {
 }  // namespace
 
 KOperations whole_K(const QuadraticProgram& qp) {
-  return {[&qp](const VectorXd& u) { return K_times(qp, u); }, [&qp]() { return VectorXd(qp.K.diagonal()); }};
+  KOperations K;
+  K.times = [&qp](const VectorXd& u) { return K_times(qp, u); };
+  K.diagonal = [&qp]() { return VectorXd(qp.K.diagonal()); };
+  K.certify = [&qp](const SolveResult& result) {
+    return contactqp::certify(qp, result.u, result.lambda, result.lambda_t, result.K_factor.get());
+  };
+  return K;
 }
+
+namespace {
+
+// Whether u is so long that only a (numerically) free motion explains it: ‖K‖∞‖u‖∞ beyond
+// 1/kNullRelative times the load (or the push of the gaps), i.e. a stiffness below
+// kNullRelative ‖K‖ carried it. A certified answer that long is examined like a rejected one.
+bool beyond_any_stiffness(const QuadraticProgram& qp, const VectorXd& u) {
+  if (u.size() == 0) return false;
+  const double stiffness = infinity_norm(qp.K);
+  const double load = std::max(qp.f.cwiseAbs().maxCoeff(), qp.g.size() ? stiffness * qp.g.cwiseAbs().maxCoeff() : 0.0);
+  return stiffness * u.cwiseAbs().maxCoeff() > load / kNullRelative;
+}
+
+// The status never claims more than the certificate shows; where it rejects the answer, look for
+// the evidence that no answer exists (rows that contradict each other, a free motion the load
+// drives) and say what was found.
+void certify_status(const QuadraticProgram& qp, const SolveOptions& options, const KOperations& K, SolveResult& result,
+                    const Certificate& certificate) {
+  apply_certificate(result, certificate, options.tol);
+  if (!K.whole) return;
+  const bool beyond = beyond_any_stiffness(qp, result.u);
+  if (result.status == Status::Converged && !beyond) return;
+  if (beyond && result.status != Status::Converged) {
+    // A last iterate that long is no answer to show (a free motion, or a solve that broke down).
+    result.message += "; its last iterate (|u| up to " + short_number(result.u.cwiseAbs().maxCoeff()) +
+                      ", beyond what any stiffness of K carries) is reported as u = 0, λ = 0";
+    result.u.setZero();
+    result.lambda.setZero();
+    result.lambda_t.setZero();
+    result.certificate = K.certify(result);
+  }
+
+  Stopwatch clock;
+  const VectorXd farkas = farkas_direction(qp, options.tol);
+  VectorXd recession;
+  if (farkas.size() == 0) {
+    const Eigen::MatrixXd R = qp.n_dofs() <= kNullSpaceMaxDofs ? null_space_of(qp.K) : Eigen::MatrixXd();
+    result.null_space_dimension = static_cast<int>(R.cols());
+    recession = recession_direction(qp, R);
+    if (R.cols() > 0 && recession.size() == 0)
+      result.message +=
+          "; K is only positive semidefinite (" + std::to_string(R.cols()) + " free motions, which the rows must hold)";
+  }
+  if (farkas.size() > 0 || recession.size() > 0) {
+    const bool infeasible = farkas.size() > 0;
+    result.status = infeasible ? Status::Infeasible : Status::Unbounded;
+    result.message =
+        infeasible ? "infeasible: no u satisfies B u <= g (" + std::to_string((farkas.array() > 0).count()) +
+                         " rows contradict each other; SolveResult::farkas is the evidence)"
+                   : "unbounded: the load drives a free motion of K (null space of dimension " +
+                         std::to_string(result.null_space_dimension) +
+                         ") that no row stops, so the energy falls without bound along it (SolveResult::recession)";
+    result.farkas = farkas;
+    result.recession = recession;
+    // No answer exists: report none rather than the backend's last iterate.
+    result.u.setZero();
+    result.lambda.setZero();
+    result.lambda_t.setZero();
+    result.certificate = K.certify(result);
+  }
+  result.timings.add("diagnose", clock.seconds());
+}
+
+}  // namespace
+
+namespace {
+
+// The backend on the (scaled) problem, its answer back in the caller's units and guarded: no
+// NaN or Inf ever leaves solve(), nor numbers whose energy overflows.
+SolveResult run_backend(const QuadraticProgram& qp, const SolveOptions& used, const KOperations& K,
+                        const BackendSolve& backend_solve) {
+  SolveResult result;
+  if (used.scale) {
+    const QpScaling scaling = choose_scaling(qp, K.diagonal());
+    result = backend_solve(scaled_qp(qp, scaling), scaled_options(used, scaling));
+    unscale_result(result, scaling);
+  } else {
+    result = backend_solve(qp, used);
+  }
+  // With friction λ_T has m · n_directions entries; without, none.
+  const long t_rows = qp.friction.empty() ? 0 : qp.friction.T.rows();
+  if (result.u.size() != qp.n_dofs() || !result.u.allFinite() || result.lambda.size() != qp.n_constraints() ||
+      !result.lambda.allFinite() || result.lambda_t.size() != t_rows || !result.lambda_t.allFinite()) {
+    if (result.status == Status::Converged) {
+      result.status = Status::NumericalError;
+      result.message = "the backend returned a solution that is not finite";
+    }
+    result.u = VectorXd::Zero(qp.n_dofs());
+    result.lambda = VectorXd::Zero(qp.n_constraints());
+    result.lambda_t = VectorXd::Zero(t_rows);
+  } else if (overflows(qp, K.times, result)) {
+    if (result.status == Status::Converged) result.status = Status::NumericalError;
+    result.message += "; its last iterate overflows (energy beyond double range) and is reported as u = 0, λ = 0";
+    result.u = VectorXd::Zero(qp.n_dofs());
+    result.lambda = VectorXd::Zero(qp.n_constraints());
+    result.lambda_t = VectorXd::Zero(t_rows);
+  }
+  zero_separated_multipliers(qp, K.times, result, used.tol);
+  return result;
+}
+
+// A backend's stopping test measures its own scaled copy, often a proxy of the certificate (a
+// change of λ, Ipopt's scaled error, Coulomb's fixed point): when it claims Converged and the
+// certificate disagrees, it gets one more run from its answer at a tolerance tightened by the
+// certificate's excess, and the second answer is kept when the certificate accepts it.
+void tighten_once(const QuadraticProgram& qp, const SolveOptions& used, const KOperations& K,
+                  const BackendSolve& backend_solve, SolveResult& result, Certificate& certificate) {
+  if (result.status != Status::Converged || meets_tolerance(certificate, used.tol)) return;
+  const double excess =
+      std::max(certificate.kkt_max(), certificate.dual_available ? std::abs(certificate.relative_gap) : 0.0);
+  if (!std::isfinite(excess)) return;
+  SolveOptions tighter = used;
+  tighter.tol = std::max(1e-14, std::min(0.1 * used.tol, 0.1 * used.tol * kCertifiedFactor * used.tol / excess));
+  tighter.initial = {result.u, result.lambda, result.lambda_t};
+  if (result.K_factor) tighter.K_factor = result.K_factor;
+  SolveResult again = run_backend(qp, tighter, K, backend_solve);
+  const Certificate second = K.certify(again);
+  // The second run's own test is at the tighter tol, which it may not reach (Ipopt's restoration
+  // failing at 1e-12): its answer counts when the certificate accepts it at the caller's tol.
+  if (!meets_tolerance(second, used.tol)) {
+    result.message += "; a second run at tol " + short_number(tighter.tol) + " from its answer ended " +
+                      to_string(again.status) + " with relative KKT residual " + short_number(second.kkt_max()) +
+                      " (stationarity " + short_number(second.stationarity) + ", tangential " +
+                      short_number(second.tangential) + ")";
+    return;
+  }
+  again.iterations += result.iterations;
+  Timings timings = result.timings;
+  timings.merge(again.timings);
+  again.timings = timings;
+  again.diagnostics["tightened_tol"] = tighter.tol;
+  again.message = result.message + "; the certificate rejected that answer, and a second run from it at tol " +
+                  short_number(tighter.tol) + " (" + again.message + ") gave one it accepts";
+  again.status = Status::Converged;
+  result = std::move(again);
+  certificate = second;
+}
+
+}  // namespace
 
 SolveResult solve_with(const QuadraticProgram& qp, const SolveOptions& options, const KOperations& K,
                        const BackendSolve& backend_solve) {
@@ -141,37 +292,19 @@ SolveResult solve_with(const QuadraticProgram& qp, const SolveOptions& options, 
   }
   const SolveOptions& used = raised ? limited : options;
 
-  SolveResult result;
-  if (used.scale) {
-    const QpScaling scaling = choose_scaling(qp, K.diagonal());
-    result = backend_solve(scaled_qp(qp, scaling), scaled_options(used, scaling));
-    unscale_result(result, scaling);
-  } else {
-    result = backend_solve(qp, used);
-  }
+  SolveResult result = run_backend(qp, used, K, backend_solve);
+  // The solver of K's statistics count the backend's solves, not the certificate's.
+  const LinearSolverStatistics statistics = result.K_factor ? result.K_factor->statistics() : LinearSolverStatistics{};
+  Stopwatch certifying;
+  Certificate certificate = K.certify(result);
+  const double certify_seconds = certifying.seconds();
+  tighten_once(qp, used, K, backend_solve, result, certificate);
   if (raised) result.diagnostics["max_iterations"] = used.max_iterations;  // what the JSON's solver block reports
-
-  // The final guard: no NaN or Inf ever leaves solve(), nor numbers whose energy overflows.
-  // With friction λ_T has m · n_directions entries; without, none.
-  const long t_rows = qp.friction.empty() ? 0 : qp.friction.T.rows();
-  if (result.u.size() != qp.n_dofs() || !result.u.allFinite() || result.lambda.size() != qp.n_constraints() ||
-      !result.lambda.allFinite() || result.lambda_t.size() != t_rows || !result.lambda_t.allFinite()) {
-    if (result.status == Status::Converged) {
-      result.status = Status::NumericalError;
-      result.message = "the backend returned a solution that is not finite";
-    }
-    result.u = VectorXd::Zero(qp.n_dofs());
-    result.lambda = VectorXd::Zero(qp.n_constraints());
-    result.lambda_t = VectorXd::Zero(t_rows);
-  } else if (overflows(qp, K.times, result)) {
-    if (result.status == Status::Converged) result.status = Status::NumericalError;
-    result.message += "; its last iterate overflows (energy beyond double range) and is reported as u = 0, λ = 0";
-    result.u = VectorXd::Zero(qp.n_dofs());
-    result.lambda = VectorXd::Zero(qp.n_constraints());
-    result.lambda_t = VectorXd::Zero(t_rows);
-  }
-  zero_separated_multipliers(qp, K.times, result, options.tol);
-  report_linear_solver(result);
+  report_linear_solver(result, result.diagnostics.count("tightened_tol") && result.K_factor
+                                   ? result.K_factor->statistics()
+                                   : statistics);
+  result.timings.add("certify", certify_seconds);
+  certify_status(qp, options, K, result, certificate);
   // A diagnostic that is not finite (ρ_max with no constraints) is absent, not Inf.
   for (auto it = result.diagnostics.begin(); it != result.diagnostics.end();)
     it = std::isfinite(it->second) ? std::next(it) : result.diagnostics.erase(it);

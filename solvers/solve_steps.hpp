@@ -14,6 +14,12 @@ namespace contactqp::detail {
 struct KOperations {
   std::function<VectorXd(const VectorXd& u)> times;  // K u
   std::function<VectorXd()> diagonal;                // K's diagonal
+  // The certificate of a result (certificate.hpp), collective where K's products are: solve()
+  // certifies every answer once and its status claims no more than that.
+  std::function<Certificate(const SolveResult& result)> certify;
+  // Whether the QP is whole on this process: only then does solve() look for the evidence of a
+  // problem without solution (no_solution.hpp) when the certificate rejects an answer.
+  bool whole = true;
 };
 KOperations whole_K(const QuadraticProgram& qp);  // refers to qp: keep it alive
 
@@ -22,8 +28,9 @@ using BackendSolve = std::function<SolveResult(const QuadraticProgram& qp, const
 
 // Validates the QP and the options (backend options and problem kind too), scales, runs
 // `backend_solve`, unscales, guards against non-finite and overflowed output, zeros the
-// multipliers of separated rows and reports the solver of K's statistics: solve() is this with
-// whole_K and the backend's registration.
+// multipliers of separated rows, certifies the answer (and, when the certificate rejects it,
+// looks for evidence that no answer exists) and reports the solver of K's statistics: solve()
+// is this with whole_K and the backend's registration.
 SolveResult solve_with(const QuadraticProgram& qp, const SolveOptions& options, const KOperations& K,
                        const BackendSolve& backend_solve);
 

@@ -136,7 +136,7 @@ std::string closing_message(const SolveOptions& options, UzawaVariant variant, c
       return "diverged after " + std::to_string(run.iterations) + " iterations: " + rho + " is too large (" + rho_max +
              (variant == UzawaVariant::Accelerated ? "; the accelerated iteration needs about ρ ≤ ρ_max/2" : "") +
              "); use --rho auto or a smaller ρ" + note;
-    case Status::NumericalError:
+    default:  // NumericalError; the rest are solve()'s, from the certificate
       break;
   }
   return "numerical error";

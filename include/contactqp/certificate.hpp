@@ -42,24 +42,10 @@
 #include <limits>
 #include <string>
 
+#include "contactqp/certificate_values.hpp"
 #include "contactqp/qp.hpp"
 
 namespace contactqp {
-
-struct Certificate {
-  double stationarity = 0;        // relative, see above
-  double primal_feasibility = 0;  // relative
-  double dual_feasibility = 0;    // relative
-  double complementarity = 0;     // relative
-  double tangential = 0;          // relative natural-map residual of the friction law; 0 without friction
-  double objective = 0;           // J(u), in the QP's energy units (with friction, Σ r_i‖slip_i‖ included)
-  double dual_objective = 0;      // θ(λ); −inf is reported as not finite (K singular and f − Bᵀλ ∉ range K)
-  double duality_gap = 0;         // J(u) − θ(λ), energy units; ≥ 0 up to round-off when u is feasible
-  double relative_gap = 0;        // duality_gap / energy scale
-  bool dual_available = true;     // false when K could not be factorised; θ and the gaps are then 0
-
-  double kkt_max() const;  // the largest of the relative KKT residuals (tangential included)
-};
 
 // K_factor: a solver of qp.K to reuse (e.g. SolveResult::K_factor), of any kind: θ needs one
 // solve with the stationarity residual r, and an iterative solver's relative inner tolerance
@@ -70,6 +56,19 @@ Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorX
 // With friction: λ_T = lambda_t (m · n_directions entries; empty reads as 0).
 Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda, const VectorXd& lambda_t,
                     const LinearSolver* K_factor = nullptr);
+
+// The status a solve may claim, given the certificate of its answer: `proposed` (the backend's
+// own) when it claims no more than the certificate shows, Inaccurate when the backend claims
+// Converged but the relative KKT residual (kkt_max) or, where θ is available, the relative
+// duality gap |J − θ|/energy exceeds kCertifiedFactor · tol. The factor allows for round-off
+// between a backend's stopping test (in its scaled copy) and the certificate (in the caller's
+// units), not for a looser tolerance: docs/extremes.md, "What converged means".
+inline constexpr double kCertifiedFactor = 10.0;
+bool meets_tolerance(const Certificate& certificate, double tol);
+Status certified_status(const Certificate& certificate, double tol, Status proposed);
+// Stores the certificate in the result and holds its status to it (certified_status), saying in
+// the message what the certificate showed when it overrules the backend.
+void apply_certificate(SolveResult& result, const Certificate& certificate, double tol);
 
 // What the certificate's formulas read of (qp, u, λ): maxima and sums over the entries. A caller
 // that holds u, λ and the rows of K, f, B and g in pieces (one per process of a distributed

@@ -12,10 +12,12 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "contactqp/certificate_values.hpp"
 #include "contactqp/coarse_space.hpp"
 #include "contactqp/friction.hpp"
 #include "contactqp/linear_solver.hpp"
@@ -107,11 +109,16 @@ inline constexpr Backend Backend::Nlopt{"nlopt"};
 inline constexpr Backend Backend::ActiveSet{"active_set"};
 inline constexpr Backend Backend::Petsc{"petsc"};
 
+// How a solve ended. solve() never claims more than the certificate it computes shows
+// (certificate.hpp's certified_status): Converged only when the certificate meets tol.
 enum class Status {
-  Converged,       // the stopping rule of the backend was met at the requested tol
+  Converged,       // the certificate meets the requested tol (relative KKT residual and duality gap)
   MaxIterations,   // stopped at max_iterations; u and λ are the last (finite) iterate
   Diverged,        // the iteration was expanding (e.g. Uzawa with ρ > ρ_max); stopped early
   NumericalError,  // a factorisation or the backend's library failed; see the message
+  Inaccurate,      // the backend stopped on its own test, but the certificate exceeds tol
+  Infeasible,      // no u satisfies B u ≤ g: SolveResult::farkas is the evidence
+  Unbounded,       // J falls without bound along a free motion: SolveResult::recession is the evidence
 };
 
 std::string to_string(Backend backend);  // its name: "uzawa_accel"
@@ -210,6 +217,18 @@ struct SolveResult {
   std::vector<std::string> warnings;
   // The solver of K the backend used, if any: reuse it for certify() or further solves.
   std::shared_ptr<const LinearSolver> K_factor;
+  // The certificate of (u, λ, λ_T), computed by solve() outside the backend (certificate.hpp);
+  // the status never claims more than it shows. Empty only when solve() did not finish.
+  std::optional<Certificate> certificate;
+  // Status::Infeasible: y ≥ 0 (m entries, ‖y‖∞ = 1) with Bᵀy ≈ 0 and gᵀy < 0, so that no u
+  // satisfies B u ≤ g (Farkas' lemma; docs/extremes.md says to what accuracy). Empty otherwise.
+  VectorXd farkas;
+  // Status::Unbounded: d (n entries, ‖d‖₂ = 1) with K d ≈ 0, B d ≤ 0 and fᵀd > 0: J falls
+  // without bound along u + t d, a free motion that the load drives and no row stops. Empty otherwise.
+  VectorXd recession;
+  // The dimension of K's null space when solve() found K only positive semidefinite (a body free
+  // to move rigidly), else 0; solve() looks only when the certificate rejects the answer.
+  int null_space_dimension = 0;
 };
 
 }  // namespace contactqp

@@ -177,11 +177,16 @@ void bind_qp(py::module_& m) {
     members[constant_name(backend).c_str()] = backend;
   }
   backend_class.attr("__members__") = members;
-  py::enum_<Status>(m, "Status", "How a solve ended; accuracy is the certificate's business.")
-      .value("CONVERGED", Status::Converged, "the backend's stopping rule was met at the requested tol")
+  py::enum_<Status>(m, "Status", "How a solve ended; never more than the certificate shows.")
+      .value("CONVERGED", Status::Converged, "the certificate meets the requested tol (10 x tol for round-off)")
       .value("MAX_ITERATIONS", Status::MaxIterations, "stopped at max_iterations; u and lam are the last iterate")
       .value("DIVERGED", Status::Diverged, "the iteration was expanding (e.g. Uzawa with rho > rho_max)")
       .value("NUMERICAL_ERROR", Status::NumericalError, "a factorisation or the backend's library failed")
+      .value("INACCURATE", Status::Inaccurate,
+             "the backend stopped on its own test, but the certificate of its answer exceeds tol")
+      .value("INFEASIBLE", Status::Infeasible, "no u satisfies B u <= g: Solution.farkas is the evidence")
+      .value("UNBOUNDED", Status::Unbounded,
+             "the load drives a free motion no row stops: Solution.recession is the evidence")
       .def_property_readonly(
           "label", [](Status s) { return to_string(s); }, "The name the result JSON uses, e.g. 'converged'.");
 
@@ -282,6 +287,19 @@ certificate, backend, and converged (status == Status.CONVERGED).)")
           "diagnostics", [](const Solution& s) { return s.result.diagnostics; }, "named extras: rho, rho_max, ...")
       .def_property_readonly("backend", [](const Solution& s) { return s.backend; })
       .def_readonly("certificate", &Solution::certificate)
+      .def_property_readonly(
+          "farkas",
+          [](const Solution& s) { return s.result.farkas.size() ? py::object(py::cast(s.result.farkas)) : py::none(); },
+          "INFEASIBLE: y >= 0 with B^T y ~ 0 and g^T y < 0 (no u satisfies B u <= g), else None")
+      .def_property_readonly(
+          "recession",
+          [](const Solution& s) {
+            return s.result.recession.size() ? py::object(py::cast(s.result.recession)) : py::none();
+          },
+          "UNBOUNDED: d with K d ~ 0, B d <= 0 and f^T d > 0 (the energy falls along it), else None")
+      .def_property_readonly(
+          "null_space_dimension", [](const Solution& s) { return s.result.null_space_dimension; },
+          "the dimension of K's null space when solve() found K only semidefinite, else 0")
       .def("__repr__", [](const Solution& s) {
         return "<contactqp.Solution backend=" + to_string(s.backend) + " status=" + to_string(s.result.status) +
                " iterations=" + std::to_string(s.result.iterations) +
@@ -302,7 +320,9 @@ certificate, backend, and converged (status == Status.CONVERGED).)")
         {
           py::gil_scoped_release release;
           solution.result = solve(qp, options);
-          solution.certificate = certify(qp, solution.result.u, solution.result.lambda, solution.result.K_factor.get());
+          solution.certificate = solution.result.certificate ? *solution.result.certificate
+                                                             : certify(qp, solution.result.u, solution.result.lambda,
+                                                                       solution.result.K_factor.get());
           solution.result.K_factor.reset();
         }
         watch.rethrow_if_failed();

@@ -124,3 +124,27 @@ def test_help_shows_a_call_example():
     for name in ["solve", "certify", "solve_scene", "compare_scene", "available_backends", "backend_available",
                  "QuadraticProgram", "Solution", "Certificate", "SceneResult", "Comparison", "InputError"]:
         assert getattr(contactqp, name).__doc__, name
+
+
+def test_a_qp_without_solution_says_so_with_its_evidence(backend):
+    """A floating chain pulled away from its only wall is unbounded; contradictory rows are
+    infeasible: never CONVERGED, on every backend, with the evidence checked here."""
+    K = sp.csr_matrix(np.array([[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]]))
+    pulled = contactqp.QuadraticProgram(K, np.array([-1.0, 0.0, 0.0]), sp.csr_matrix([[0.0, 0.0, 1.0]]),
+                                        np.array([0.5]))
+    s = contactqp.solve(pulled, backend=backend)
+    assert s.status == contactqp.Status.UNBOUNDED and not s.converged, s.message
+    d = s.recession
+    assert pulled.f @ d > 0 and (pulled.B @ d).max() <= 1e-12
+    np.testing.assert_allclose(np.abs(d), np.full(3, 3 ** -0.5), rtol=1e-8)  # the chain's translation
+    assert s.null_space_dimension == 1 and s.farkas is None
+    assert np.all(s.u == 0) and np.all(s.lam == 0)
+
+    grounded = sp.csr_matrix(np.array([[2.0, -1.0], [-1.0, 1.0]]))
+    rows = sp.csr_matrix(np.array([[1.0, 0.0], [-1.0, 0.0]]))  # u0 <= -1 and u0 >= 1
+    contradictory = contactqp.QuadraticProgram(grounded, np.array([0.3, 0.0]), rows, np.array([-1.0, -1.0]))
+    s = contactqp.solve(contradictory, backend=backend)
+    assert s.status == contactqp.Status.INFEASIBLE, s.message
+    y = s.farkas
+    assert y.min() >= 0 and contradictory.g @ y < 0 and np.abs(contradictory.B.T @ y).max() < 1e-12
+    assert s.recession is None

@@ -10,6 +10,7 @@
 
 #include "backend_options.hpp"
 #include "contactqp/backend.hpp"
+#include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/linear_solver.hpp"
 #include "contactqp/processes.hpp"
@@ -158,6 +159,7 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
     clock.restart();
     report.certificate =
         certificate_from(distributed_certificate_terms(*model, qp, solution, solved.solver_of_A.get(), settings.tol));
+    apply_certificate(report.result, report.certificate, settings.tol);
     report.timings.add("certify", clock.seconds());
   }  // A, its preconditioner and the PETSc vectors are freed here, before the output is made
 

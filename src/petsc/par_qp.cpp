@@ -51,6 +51,8 @@ SolveResult solve(const ParQuadraticProgram& qp, const SolveOptions& options) {
     if (qp.ranks > 1) detail::sum_over_ranks(diagonal.data(), diagonal.size());
     return diagonal;
   };
+  K.certify = [&qp](const SolveResult& result) { return certify(qp, result.u, result.lambda, result.K_factor.get()); };
+  K.whole = qp.ranks <= 1;
   return detail::solve_with(qp.share, options, K, [&layout](const QuadraticProgram& scaled, const SolveOptions& o) {
     return detail::solve_bound_form(scaled, layout, o);
   });

@@ -8,6 +8,7 @@
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"
 #include "norms.hpp"
+#include "number_format.hpp"
 #include "qp/friction_sets.hpp"
 
 namespace contactqp {
@@ -163,6 +164,34 @@ Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorX
   }
   if (!c.dual_available) c.dual_objective = c.duality_gap = c.relative_gap = 0;
   return c;
+}
+
+}  // namespace contactqp
+
+namespace contactqp {
+
+bool meets_tolerance(const Certificate& certificate, double tol) {
+  const double bound = kCertifiedFactor * tol;
+  if (!(certificate.kkt_max() <= bound)) return false;  // NaN fails too
+  return !certificate.dual_available || std::abs(certificate.relative_gap) <= bound;
+}
+
+Status certified_status(const Certificate& certificate, double tol, Status proposed) {
+  if (proposed == Status::Converged && !meets_tolerance(certificate, tol)) return Status::Inaccurate;
+  return proposed;
+}
+
+void apply_certificate(SolveResult& result, const Certificate& certificate, double tol) {
+  result.certificate = certificate;
+  const Status proposed = result.status;
+  result.status = certified_status(certificate, tol, proposed);
+  if (result.status == proposed) return;
+  result.message = "the backend stopped on its own test (" + result.message +
+                   "), but its answer's certificate shows relative KKT residual " +
+                   short_number(certificate.kkt_max()) +
+                   (certificate.dual_available ? ", relative gap " + short_number(std::abs(certificate.relative_gap))
+                                               : std::string()) +
+                   ", above " + short_number(kCertifiedFactor) + " × tol = " + short_number(kCertifiedFactor * tol);
 }
 
 }  // namespace contactqp

@@ -65,6 +65,12 @@ std::string to_string(Status status) {
       return "diverged";
     case Status::NumericalError:
       return "numerical_error";
+    case Status::Inaccurate:
+      return "inaccurate";
+    case Status::Infeasible:
+      return "infeasible";
+    case Status::Unbounded:
+      return "unbounded";
   }
   return "unknown";
 }

@@ -108,7 +108,9 @@ CompareReport compare_scene(const Scene& scene, const CompareOptions& options) {
     run.result.K_factor.reset();  // a factor per backend is memory the next one may need
     const Model& run_model = *last_model;
     const QuadraticProgram& run_qp = *last_qp;
-    run.certificate = certify(run_qp, run.result.u, run.result.lambda, run.result.lambda_t, &K_factor);
+    run.certificate = run.result.certificate
+                          ? *run.result.certificate
+                          : certify(run_qp, run.result.u, run.result.lambda, run.result.lambda_t, &K_factor);
     run.contact = summarize_contact(run_model, run_qp, run.result.u, run.result.lambda);
     if (!run_model.bodies.empty() && run_model.scene.obstacles.empty()) {
       // Bodies without obstacles: the table's zone is the first pair's.
