@@ -257,6 +257,10 @@ PieceArrays piece_arrays(const DistributedModel& model, const Eigen::VectorXd& d
 void write_pvtu(const std::string& pvtu_path, const Mesh& mesh, const std::vector<PointArray>& arrays) {
   namespace fs = std::filesystem;
   const int rank = world_rank(), ranks = world_size();
+  if (ranks == 1 && fs::path(pvtu_path).extension() != ".pvtu") {
+    write_file_atomically(pvtu_path, vtu_piece(mesh, arrays));
+    return;
+  }
   const fs::path target(pvtu_path);
   const std::string stem = target.stem().string();
   const auto piece_name = [&stem](int r) { return stem + "_" + std::to_string(r) + ".vtu"; };

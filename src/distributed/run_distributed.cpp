@@ -95,11 +95,19 @@ SolveResult solve_result(const DistributedPdasResult& solved, const DistributedM
 }
 
 // Whether run_scene() goes this way: the petsc backend (with contact, or --no-contact: one
-// linear solve by the same KSP and hierarchy, the contact solve's reference), a one-body scene,
-// and several processes or options.distributed.
+// linear solve by the same KSP and hierarchy, the contact solve's reference) on a one-body
+// scene, under mpirun or with options.distributed (the CLI's default). On one process only
+// what this path models goes this way: a frictionless scene without load steps; the others keep
+// the one-process path (docs/architecture.md, "Which path a scene takes"). Under mpirun they
+// come here and are refused below, since the one-process path would hold everything on every rank.
 bool takes_distributed_run(const Scene& scene, const RunOptions& options) {
-  return scene.solver.backend == Backend::Petsc && scene.bodies.empty() && scene.pairs.empty() &&
-         (options.distributed || process_count() > 1);
+  if (scene.solver.backend != Backend::Petsc || !scene.bodies.empty() || !scene.pairs.empty()) return false;
+  if (process_count() > 1) return true;
+  if (!options.distributed || !scene.steps.empty() || scene.friction_law() != FrictionLaw::None) return false;
+  // The one-process path's own methods (method=tao, hierarchy=fresh), which pdas_options() refuses.
+  for (const auto& [key, value] : options_for(Backend::Petsc, scene.solver.backend_options))
+    if ((key == "method" && value != "pdas") || (key == "hierarchy" && value != "kept")) return false;
+  return true;
 }
 
 // Collective. What run_scene() does, distributed.
