@@ -115,10 +115,7 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
   Stopwatch total;
   validate_options(scene.solver);
   // What the distributed path does not model yet, refused as the one-process path refuses it.
-  if (!scene.steps.empty())
-    throw InputError("steps",
-                     "are not solved by a distributed run (the petsc backend under mpirun): run the scene "
-                     "on one process");
+  if (!scene.steps.empty()) refuse_steps_on_several_processes(scene.solver.backend);
   if (scene.friction_law() != FrictionLaw::None) {
     const ProblemKind kind = scene.friction_law() == FrictionLaw::Tresca ? ProblemKind::Tresca : ProblemKind::Coulomb;
     std::string others;
@@ -133,10 +130,13 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
     if (options.on_phase) options.on_phase(name);
   };
 
-  phase("mesh");
-  // PETSc, with the user's options on its command line: after the agreement above, since
-  // starting it is collective (a rank that failed before would leave the others waiting in it).
+  // PETSc, with the user's options on its command line: after an agreement that no rank has
+  // failed, since starting it is collective (a rank that failed before would leave the others
+  // waiting in it), and before the phase's own failures, which the others then meet at the
+  // mesh's first checkpoint instead of inside PETSc's start.
+  checkpoint();
   start_process_runtime(scene.solver.library_options);
+  phase("mesh");
   auto model = std::make_shared<DistributedModel>(build_distributed_model(scene, options.build, phase));
   RunReport report;
   report.options = scene.solver;
