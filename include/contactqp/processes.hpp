@@ -29,15 +29,31 @@ void start_process_runtime(const std::map<std::string, std::string>& library_opt
 // boundary (run/phases.hpp). start_process_runtime() later finds the connection and uses it.
 void connect_processes();
 
-// How a run ends on every process at once. Every process passes its exit status and its error
-// line (empty when it has none); the lowest-numbered process with a line prints it to stderr,
-// once for the run (naming its process when not every process failed), and the result is the largest status. Collective while the runtime runs on
-// several processes. A process that failed waits at most `timeout_seconds` for the others (they
-// may be stuck in a collective call it left), then prints its line and ends them all: never a hang.
-// 30 s: long enough for the others to reach a boundary from any phase of a large run's step,
-// short enough that a run stuck in a collective ends well within a minute.
+// What the processes agreed on (agree_on_failure()).
+struct AgreedFailure {
+  int status = 0;           // the largest status passed: 0 when no process failed
+  std::string error;        // the error of the lowest-numbered process that passed one; "" when none did
+  int process = -1;         // that process; −1 when none
+  bool everywhere = false;  // every process passed an error (else the error is one process's own)
+};
+
+// The one protocol by which the processes of a run agree on a failure (docs/petsc.md, "When one
+// rank fails"). Every process calls it at the same point with its status and its error (0 and
+// "" when it has not failed) and learns the largest status and the first process's error:
+//   - at a boundary, a process that has not failed (run/phases.hpp's checkpoint(), every phase
+//     and step of a run), where one that failed meets it from main() with its exit status and
+//     error line (its last agreement: it left the run when it failed);
+//   - within a step whose failure every process must know to take the same branch, each with
+//     its own outcome (the petsc backend's set-up and iteration).
+// Collective while the runtime runs on several processes; on one (or before the runtime runs,
+// when every process fails alike) it returns the caller's own, process 0 speaking. A process
+// that failed waits at most `timeout_seconds` for the others (they may be stuck in a collective
+// call it left), then prints its error ("contactqp: error: ...") and ends them all: never a
+// hang. 30 s: long enough for the others to reach a boundary from any phase of a large run's
+// step, short enough that a run stuck in a collective ends well within a minute.
 constexpr double failure_grace_seconds = 30;
-int agree_on_exit(int status, const std::string& error_line, double timeout_seconds = failure_grace_seconds);
+AgreedFailure agree_on_failure(int status = 0, const std::string& error = "",
+                               double timeout_seconds = failure_grace_seconds);
 
 // What a runtime of several processes registers (from its own file, CONTACTQP_BUILTIN).
 struct ProcessRuntime {
@@ -45,8 +61,8 @@ struct ProcessRuntime {
   std::function<int()> count;  // the number of processes while it runs, else 0
   std::function<void(const std::map<std::string, std::string>& library_options)> start;
   std::function<void()> connect;  // connect_processes()
-  // agree_on_exit() over the processes, while count() > 1.
-  std::function<int(int status, const std::string& error_line, double timeout_seconds)> agree_on_exit;
+  // agree_on_failure() over the processes, while count() > 1.
+  std::function<AgreedFailure(int status, const std::string& error, double timeout_seconds)> agree_on_failure;
 };
 void register_process_runtime(ProcessRuntime runtime);
 

@@ -30,7 +30,10 @@ struct RunOptions {
   bool no_contact = false;  // drop the contact rows: one linear solve of the same K (the unit of cost)
   // Each process holds only its part of the mesh, the model and the output (docs/petsc.md,
   // "Distributed runs"). The petsc backend under mpirun does so anyway; true asks for it on one
-  // process too (then "model" is a phase of its own, after "mesh").
+  // process too, where that path models the scene (one body, frictionless, no load steps; then
+  // "model" is a phase of its own, after "mesh"). `contactqp solve` sets it. False keeps the
+  // report whole on one process: result.u, the model and the QP, which a distributed run's
+  // report does not hold (it holds the contact surface gathered).
   bool distributed = false;
   // Called as each phase starts: "mesh" (with the model), "assemble", "solve", "certify",
   // "postprocess". For a progress display; empty: not called.

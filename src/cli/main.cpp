@@ -31,9 +31,9 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  // Every way out goes through agree_on_exit (processes.hpp): under mpirun all ranks end with
-  // the same status and the error line is printed once.
-  std::string error_line;
+  // Every way out goes through agree_on_failure (processes.hpp): under mpirun all ranks end with
+  // the same status and the error line is printed once, by the first rank that has one.
+  std::string error;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& help) {
@@ -46,22 +46,28 @@ int main(int argc, char** argv) {
     // Another process failed and printed the line; the agreement is made.
     std::cout << std::flush;
     return failed.status();
-  } catch (const CLI::ParseError& error) {
+  } catch (const CLI::ParseError& parse) {
     // One line, like every other bad input.
-    std::string text = error.what();
+    std::string text = parse.what();
     std::replace(text.begin(), text.end(), '\n', ' ');
-    error_line = "contactqp: error: " + text + " (see --help)";
+    error = text + " (see --help)";
     exit_status = 2;
-  } catch (const contactqp::InputError& error) {
-    error_line = std::string("contactqp: error: ") + error.what();
+  } catch (const contactqp::InputError& bad) {
+    error = bad.what();
     exit_status = 2;
   } catch (const std::bad_alloc&) {
-    error_line = "contactqp: error: out of memory; try a coarser mesh";
+    error = "out of memory; try a coarser mesh";
     exit_status = 1;
-  } catch (const std::exception& error) {
-    error_line = std::string("contactqp: error: ") + error.what();
+  } catch (const std::exception& failure) {
+    error = failure.what();
     exit_status = 1;
   }
   std::cout << std::flush;
-  return contactqp::agree_on_exit(exit_status, error_line, contactqp::detail::failed_process_grace_seconds());
+  const contactqp::AgreedFailure agreed =
+      contactqp::agree_on_failure(exit_status, error, contactqp::detail::failed_process_grace_seconds());
+  // The first process with an error speaks for the run, naming itself when not every one failed.
+  if (!error.empty() && agreed.process == contactqp::process_rank())
+    std::cerr << "contactqp: error: " << error
+              << (agreed.everywhere ? std::string() : " (on rank " + std::to_string(agreed.process) + ")") << "\n";
+  return agreed.status;
 }

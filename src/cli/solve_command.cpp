@@ -79,18 +79,24 @@ int run_solve(const SolveArguments& arguments) {
   RunOptions options;
   options.build.max_elements = arguments.max_elements;
   options.no_contact = arguments.no_contact;
-  options.distributed = arguments.distributed;
-  // A distributed run writes its ParaView file in pieces, one per process, joined by a .pvtu.
+  // The petsc backend's one-body scenes take the distributed path on one process too, where it
+  // models them (frictionless, no load steps: run/distributed_run.hpp); --distributed, which
+  // asked for it, is now the default and kept for the scripts that pass it. The library's
+  // default stays the one-process path, whose report holds u, the model and the QP whole.
+  options.distributed = true;
+  // A distributed run writes its ParaView file in pieces, one per process, joined by a .pvtu;
+  // on one process its one piece may be the .vtu itself.
   const bool distributed = detail::runs_distributed(scene, options);
   const bool parallel_file =
       arguments.vtu_path.size() > 5 && arguments.vtu_path.compare(arguments.vtu_path.size() - 5, 5, ".pvtu") == 0;
-  if (!arguments.vtu_path.empty() && distributed != parallel_file)
+  const bool one_piece = distributed && process_count() == 1;
+  if (!arguments.vtu_path.empty() && !one_piece && distributed != parallel_file)
     throw InputError("--vtu",
                      "= " + arguments.vtu_path +
                          (distributed ? ": a distributed run (petsc under mpirun) writes one piece per process, "
                                         "joined by a .pvtu file: name one"
-                                      : ": a .pvtu file is written by a distributed run (petsc under mpirun); "
-                                        "name a .vtu file"));
+                                      : ": a .pvtu file is written by a distributed run (petsc under mpirun or a "
+                                        "one-body frictionless scene without load steps); name a .vtu file"));
   RunReport report;
   std::string memory_line;
   // Under mpirun rank 0 alone shows progress, prints and writes the result files; in a
@@ -215,8 +221,8 @@ void add_solve_command(CLI::App& app, int& exit_status) {
                                    "Fill-reducing ordering of K: amd (default), metis or auto"));
   add_linear_solver_options(*command, *arguments);
   command->add_flag("--distributed", arguments->distributed,
-                    "Each process holds only its part of the mesh, model and output (petsc backend; under mpirun "
-                    "anyway): for a one-process run of the distributed path");
+                    "Accepted and redundant: the petsc backend runs distributed (each process holding only its "
+                    "part of the mesh, model and output) on one process too wherever that path models the scene");
   command->add_flag("--no-contact", arguments->no_contact,
                     "Drop the contact rows: one linear solve of the same K (the reference for timings)");
   command->footer(backends_help());

@@ -16,7 +16,7 @@
 #include "element_partition.hpp"
 #include "model/model_parts.hpp"
 #include "petsc/petsc_runtime.hpp"
-#include "rank_agreement.hpp"
+#include "run/phases.hpp"
 #include "world.hpp"
 
 namespace contactqp::detail {
@@ -449,7 +449,7 @@ MeshPart distribute_body_mesh(const Scene& scene, double max_gap, const BuildOpt
   CoarseFacts facts;
   std::vector<Packet> packets;
   const CoarseMesh how = body_refinement(scene);
-  agree_on_rank_zero([&] {
+  if (world_rank() == 0) {
     coarse = coarse_body_mesh(scene, max_gap, options);
     if (how.refinements != coarse.refinements)
       throw std::logic_error("distributed mesh: the scene's refinement differs from its mesher's");
@@ -472,7 +472,8 @@ MeshPart distribute_body_mesh(const Scene& scene, double max_gap, const BuildOpt
     packets = pack_parts(mesh, entities, part, ranks, coarse.refinements > 0);
     coarse = CoarseMesh();  // the parts are all that is needed from here on
     entities = CoarseEntities();
-  });
+  }
+  checkpoint();  // the other ranks wait here for rank 0's outcome (a mesh file it cannot read)
   broadcast_facts(facts);
   const Packet packet = scatter_packets(packets);
   packets = {};
@@ -481,7 +482,7 @@ MeshPart distribute_body_mesh(const Scene& scene, double max_gap, const BuildOpt
   MeshPart out;
   std::vector<long long> names;
   long long n_names = 0;
-  agree_on_step([&] {
+  {
     NodeParents parents;
     Mesh refined = refine_body_mesh(how, part.mesh, &parents);
     const CoarseLattice lattice(facts.dim, how.refinements, how.order, facts.totals);
@@ -489,7 +490,8 @@ MeshPart distribute_body_mesh(const Scene& scene, double max_gap, const BuildOpt
     names = lattice.names(part.mesh, part.vertex, part.cell, part.edges, part.faces, parents);
     const long long face_factor = refined_children(facts.dim - 1, how.refinements);
     out.mesh = keep_own_children(refined, part, refined_children(facts.dim, how.refinements), face_factor, names);
-  });
+  }
+  checkpoint();
   part = CoarsePart();
   out.outer = std::move(out.mesh.boundaries[kOuter]);
   out.mesh.boundaries.erase(kOuter);

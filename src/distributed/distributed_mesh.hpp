@@ -38,10 +38,10 @@ struct MeshPart {
   SharedNodes shared;  // sums and maxima over the ranks holding a node
 };
 
-// Collective. Bad input found while meshing (on rank 0) is thrown on every rank
-// (rank_agreement.hpp). The scene's max_gap is the model's candidate distance. `check_coarse`,
-// when given, runs on rank 0 with the coarse mesh before it is split (the checks that need the
-// whole body: names, conflicting conditions, rigid motions); what it throws is thrown everywhere.
+// Collective. Bad input found while meshing is thrown on rank 0; the others meet it at a
+// checkpoint() and throw FailedElsewhere (run/phases.hpp). The scene's max_gap is the model's
+// candidate distance. `check_coarse`, when given, runs on rank 0 with the coarse mesh before it
+// is split (the checks that need the whole body: names, conflicting conditions, rigid motions).
 MeshPart distribute_body_mesh(const Scene& scene, double max_gap, const BuildOptions& options,
                               const std::function<void(const Mesh& coarse)>& check_coarse = {});
 

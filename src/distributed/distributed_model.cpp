@@ -9,7 +9,7 @@
 #include "contact/contact.hpp"
 #include "contactqp/errors.hpp"
 #include "model/model_parts.hpp"
-#include "rank_agreement.hpp"
+#include "run/phases.hpp"
 #include "world.hpp"
 
 namespace contactqp::detail {
@@ -206,19 +206,17 @@ DistributedModel build_distributed_model(const Scene& scene, const BuildOptions&
   mark_boundaries(out);
   const NodesOfBoundary nodes_of = [&out](const std::string& name) { return out.nodes_of(name); };
   std::vector<int> point_nodes;
-  agree_on_step([&] {
-    // In the scene's own frame, as build_model() decides the problem's structure.
-    apply_displacement_conditions(model, scene, Eigen::Matrix3d::Identity(), nodes_of);
-    model.candidates = distributed_candidates(out, scene, model.max_gap);
-    remove_prescribed_candidates(model);
-  });
+  // In the scene's own frame, as build_model() decides the problem's structure.
+  apply_displacement_conditions(model, scene, Eigen::Matrix3d::Identity(), nodes_of);
+  model.candidates = distributed_candidates(out, scene, model.max_gap);
+  remove_prescribed_candidates(model);
+  checkpoint();
   point_nodes = distributed_point_nodes(out, scene, model.warnings);
-  agree_on_step([&] {
-    model.rotation = scene.transform.rotation();
-    model.scene = rotated(scene);
-    rotate_mesh(model.mesh, model.rotation);
-    apply_displacement_conditions(model, scene, model.rotation, nodes_of);
-  });
+  model.rotation = scene.transform.rotation();
+  model.scene = rotated(scene);
+  rotate_mesh(model.mesh, model.rotation);
+  apply_displacement_conditions(model, scene, model.rotation, nodes_of);
+  checkpoint();
   model.nodal_force = distributed_nodal_forces(out, point_nodes);
   warn_near_incompressible(scene, model.mesh, model.warnings);
   number_rows(out);

@@ -63,7 +63,8 @@ struct DistributedModel {
 };
 
 // Collective: distributes the mesh, then builds every rank's part of the model. Bad input is
-// thrown on every rank with the same text (rank_agreement.hpp). One-body scenes only.
+// thrown on the rank that finds it; the others meet it at the next checkpoint() and throw
+// FailedElsewhere (run/phases.hpp). One-body scenes only.
 // `on_phase`, when given, is called with "model" once the mesh is distributed.
 DistributedModel build_distributed_model(const Scene& scene, const BuildOptions& options,
                                          const std::function<void(const char* phase)>& on_phase = {});

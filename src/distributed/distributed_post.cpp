@@ -12,7 +12,7 @@
 
 #include "contact/contact.hpp"
 #include "io/temporary_file.hpp"
-#include "rank_agreement.hpp"
+#include "run/phases.hpp"
 #include "world.hpp"
 
 namespace contactqp::detail {
@@ -257,22 +257,28 @@ PieceArrays piece_arrays(const DistributedModel& model, const Eigen::VectorXd& d
 void write_pvtu(const std::string& pvtu_path, const Mesh& mesh, const std::vector<PointArray>& arrays) {
   namespace fs = std::filesystem;
   const int rank = world_rank(), ranks = world_size();
+  if (ranks == 1 && fs::path(pvtu_path).extension() != ".pvtu") {
+    write_file_atomically(pvtu_path, vtu_piece(mesh, arrays));
+    return;
+  }
   const fs::path target(pvtu_path);
   const std::string stem = target.stem().string();
   const auto piece_name = [&stem](int r) { return stem + "_" + std::to_string(r) + ".vtu"; };
   const std::string piece = (target.parent_path() / piece_name(rank)).string();
   std::unique_ptr<TemporaryFile> staged;  // removed unless committed
   try {
-    agree_on_step([&] {
-      staged = std::make_unique<TemporaryFile>(piece);
-      staged->write(vtu_piece(mesh, arrays));
-    });
-    agree_on_step([&] { staged->commit(); });
-    agree_on_rank_zero([&] {
+    // Each step ends where the ranks agree that none failed (run/phases.hpp).
+    staged = std::make_unique<TemporaryFile>(piece);
+    staged->write(vtu_piece(mesh, arrays));
+    checkpoint();
+    staged->commit();
+    checkpoint();
+    if (rank == 0) {
       std::vector<std::string> pieces;
       for (int r = 0; r < ranks; ++r) pieces.push_back(piece_name(r));
       write_file_atomically(pvtu_path, pvtu_document(arrays, pieces));
-    });
+    }
+    checkpoint();
   } catch (...) {
     // Some rank could not write: no piece of this run stays.
     staged.reset();

@@ -55,7 +55,8 @@ PieceArrays piece_arrays(const DistributedModel& model, const Eigen::VectorXd& d
 
 // Writes this rank's piece beside `pvtu_path` (STEM_RANK.vtu) and, on rank 0, the .pvtu:
 // all pieces appear, and then the .pvtu, or none of them (every rank removes its piece when one
-// failed). Collective.
+// failed). Collective. On one process a path not ending in .pvtu gets the one piece itself: a
+// whole .vtu, as the one-process path writes it.
 void write_pvtu(const std::string& pvtu_path, const Mesh& mesh, const std::vector<PointArray>& arrays);
 
 }  // namespace contactqp::detail

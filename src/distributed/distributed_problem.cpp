@@ -18,7 +18,7 @@
 #include "model/rigid_body_modes.hpp"
 #include "petsc/petsc_runtime.hpp"
 #include "qp/bound_transform.hpp"
-#include "rank_agreement.hpp"
+#include "run/phases.hpp"
 #include "world.hpp"
 
 namespace contactqp::detail {
@@ -447,7 +447,8 @@ DistributedBoundQp assemble_distributed_bound_qp(const DistributedModel& dm) {
   const Model& model = dm.local;
   const int dim = model.dim;
   DistributedBoundQp qp;
-  agree_on_step([&] { make_transforms(dm, qp); });
+  make_transforms(dm, qp);
+  checkpoint();
 
   std::vector<PetscInt> diagonal, off;
   count_nonzeros(dm, diagonal, off);

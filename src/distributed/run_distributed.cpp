@@ -96,11 +96,19 @@ SolveResult solve_result(const DistributedPdasResult& solved, const DistributedM
 }
 
 // Whether run_scene() goes this way: the petsc backend (with contact, or --no-contact: one
-// linear solve by the same KSP and hierarchy, the contact solve's reference), a one-body scene,
-// and several processes or options.distributed.
+// linear solve by the same KSP and hierarchy, the contact solve's reference) on a one-body
+// scene, under mpirun or with options.distributed (the CLI's default). On one process only
+// what this path models goes this way: a frictionless scene without load steps; the others keep
+// the one-process path (docs/architecture.md, "Which path a scene takes"). Under mpirun they
+// come here and are refused below, since the one-process path would hold everything on every rank.
 bool takes_distributed_run(const Scene& scene, const RunOptions& options) {
-  return scene.solver.backend == Backend::Petsc && scene.bodies.empty() && scene.pairs.empty() &&
-         (options.distributed || process_count() > 1);
+  if (scene.solver.backend != Backend::Petsc || !scene.bodies.empty() || !scene.pairs.empty()) return false;
+  if (process_count() > 1) return true;
+  if (!options.distributed || !scene.steps.empty() || scene.friction_law() != FrictionLaw::None) return false;
+  // The one-process path's own methods (method=tao, hierarchy=fresh), which pdas_options() refuses.
+  for (const auto& [key, value] : options_for(Backend::Petsc, scene.solver.backend_options))
+    if ((key == "method" && value != "pdas") || (key == "hierarchy" && value != "kept")) return false;
+  return true;
 }
 
 // Collective. What run_scene() does, distributed.
@@ -108,10 +116,7 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
   Stopwatch total;
   validate_options(scene.solver);
   // What the distributed path does not model yet, refused as the one-process path refuses it.
-  if (!scene.steps.empty())
-    throw InputError("steps",
-                     "are not solved by a distributed run (the petsc backend under mpirun): run the scene "
-                     "on one process");
+  if (!scene.steps.empty()) refuse_steps_on_several_processes(scene.solver.backend);
   if (scene.friction_law() != FrictionLaw::None) {
     const ProblemKind kind = scene.friction_law() == FrictionLaw::Tresca ? ProblemKind::Tresca : ProblemKind::Coulomb;
     std::string others;
@@ -126,10 +131,13 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
     if (options.on_phase) options.on_phase(name);
   };
 
-  phase("mesh");
-  // PETSc, with the user's options on its command line: after the agreement above, since
-  // starting it is collective (a rank that failed before would leave the others waiting in it).
+  // PETSc, with the user's options on its command line: after an agreement that no rank has
+  // failed, since starting it is collective (a rank that failed before would leave the others
+  // waiting in it), and before the phase's own failures, which the others then meet at the
+  // mesh's first checkpoint instead of inside PETSc's start.
+  checkpoint();
   start_process_runtime(scene.solver.library_options);
+  phase("mesh");
   auto model = std::make_shared<DistributedModel>(build_distributed_model(scene, options.build, phase));
   RunReport report;
   report.options = scene.solver;

@@ -5,6 +5,8 @@
 #include <map>
 #include <string>
 
+#include "contactqp/processes.hpp"
+
 namespace contactqp::detail {
 
 // -1 (rank) and 0 (size) while MPI does not run or is finalised.
@@ -14,8 +16,8 @@ int mpi_size();
 void sum_over_ranks(double* values, long n);
 // connect_processes() (processes.hpp): MPI alone, before PETSc.
 void connect_mpi();
-// agree_on_exit() (processes.hpp), on a communicator of its own.
-int mpi_agree_on_exit(int status, const std::string& error_line, double timeout_seconds);
+// agree_on_failure() (processes.hpp), on a communicator of its own.
+AgreedFailure mpi_agree_on_failure(int status, const std::string& error, double timeout_seconds);
 
 // PETSc's options database entries in SolveOptions::library_options ("petsc"), or "".
 std::string petsc_options_of(const std::map<std::string, std::string>& library_options);

@@ -24,6 +24,7 @@
 
 #include "bound_pdas.hpp"
 #include "coarse_level.hpp"
+#include "contactqp/processes.hpp"
 #include "contactqp/timer.hpp"
 #include "ksp_helpers.hpp"
 #include "petsc_matrix.hpp"
@@ -146,23 +147,6 @@ void assemble(Work& work, const BoundQp& problem) {
   VecDuplicate(work.x, &work.b);
   work.set(work.b, problem.b);
   check_bound_qp(VecScatterCreateToAll(work.x, &work.to_all, &work.x_all), "VecScatterCreateToAll");
-}
-
-// A phase boundary: every rank learns whether any rank failed, and the lowest failing rank's
-// message, so that all ranks take the same branch (a rank that went on alone into a collective
-// call would wait forever for the one that stopped).
-bool any_rank_failed(std::string& message) {
-  int rank = 0;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  int failing = message.empty() ? INT_MAX : rank, first = INT_MAX;
-  MPI_Allreduce(&failing, &first, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
-  if (first == INT_MAX) return false;
-  int length = static_cast<int>(message.size());
-  MPI_Bcast(&length, 1, MPI_INT, first, PETSC_COMM_WORLD);
-  message.resize(length);
-  MPI_Bcast(message.data(), length, MPI_CHAR, first, PETSC_COMM_WORLD);
-  if (first != 0) message += " (on rank " + std::to_string(first) + ")";
-  return true;
 }
 
 // A, its working copy W and the multigrid hierarchy on this rank: the coarse operators and the
@@ -591,6 +575,17 @@ BoundQpResult solve_bound_qp_petsc(BoundQp problem, const BoundQpOptions& option
     work.n = n;
     work.order = RowOrder(problem.distributed_row);
     std::string failure;
+    // Every rank learns whether any failed and the lowest failing rank's message, by the runs'
+    // one protocol (agree_on_failure(), processes.hpp), so that all take the same branch: a rank
+    // that went on alone into a collective call would wait for the one that stopped.
+    const auto failed_anywhere = [&failure] {
+      const AgreedFailure agreed = agree_on_failure(failure.empty() ? 0 : 1, failure);
+      if (agreed.status != 0 && agreed.process != 0)
+        failure = agreed.error + " (on rank " + std::to_string(agreed.process) + ")";
+      else if (agreed.status != 0)
+        failure = agreed.error;
+      return agreed.status != 0;
+    };
     Stopwatch clock;
     try {
       assemble(work, problem);
@@ -599,7 +594,7 @@ BoundQpResult solve_bound_qp_petsc(BoundQp problem, const BoundQpOptions& option
     }
     problem.A = Eigen::SparseMatrix<double>();  // PETSc has its own copy
     result.setup_seconds = clock.seconds();
-    if (!any_rank_failed(failure)) {
+    if (!failed_anywhere()) {
       clock.restart();
       try {
         if (options.method == "pdas" && options.kept_hierarchy)
@@ -613,7 +608,7 @@ BoundQpResult solve_bound_qp_petsc(BoundQp problem, const BoundQpOptions& option
       }
       result.iterate_seconds = clock.seconds();
       options_error = work.options_error;
-      any_rank_failed(failure);
+      failed_anywhere();
     }
     if (!failure.empty()) {
       result.status = Status::NumericalError;

@@ -105,11 +105,11 @@ void connect_mpi() {
   std::atexit(finalize_mpi);
 }
 
-int mpi_agree_on_exit(int status, const std::string& error_line, double timeout_seconds) {
+AgreedFailure mpi_agree_on_failure(int status, const std::string& error, double timeout_seconds) {
   const int rank = mpi_rank();
-  // The largest status, the lowest rank with a line (the largest −rank), and whether any rank
-  // has none (then the line names its rank).
-  int mine[3] = {status, error_line.empty() ? INT_MIN : -rank, error_line.empty() ? 1 : 0};
+  // The largest status, the lowest rank with an error (the largest −rank), and whether any rank
+  // has none (then the error is that rank's own).
+  int mine[3] = {status, error.empty() ? INT_MIN : -rank, error.empty() ? 1 : 0};
   int agreed[3] = {0, INT_MIN, 0};
   MPI_Request request = MPI_REQUEST_NULL;
   const MPI_Comm comm = agreement_communicator != MPI_COMM_NULL ? agreement_communicator : MPI_COMM_WORLD;
@@ -119,16 +119,26 @@ int mpi_agree_on_exit(int status, const std::string& error_line, double timeout_
     MPI_Test(&request, &done, MPI_STATUS_IGNORE);
     if (done) break;
     const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!error_line.empty() && waited > timeout_seconds) {
+    if (!error.empty() && waited > timeout_seconds) {
       // The others are stuck where this rank left them: the last resort.
-      std::cerr << error_line << " (on rank " << rank << "; the other ranks did not finish)\n" << std::flush;
+      std::cerr << "contactqp: error: " << error << " (on rank " << rank << "; the other ranks did not finish)\n"
+                << std::flush;
       MPI_Abort(MPI_COMM_WORLD, status != 0 ? status : 1);
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(error_line.empty() ? 1 : 10));
+    std::this_thread::sleep_for(std::chrono::milliseconds(error.empty() ? 1 : 10));
   }
-  if (!error_line.empty() && agreed[1] == -rank)
-    std::cerr << error_line << (agreed[2] ? " (on rank " + std::to_string(rank) + ")" : std::string()) << "\n";
-  return agreed[0];
+  AgreedFailure out;
+  out.status = agreed[0];
+  if (agreed[1] == INT_MIN) return out;
+  // Every rank is in this agreement now: the first error reaches them all.
+  out.process = -agreed[1];
+  out.everywhere = agreed[2] == 0;
+  out.error = rank == out.process ? error : std::string();
+  int length = static_cast<int>(out.error.size());
+  MPI_Bcast(&length, 1, MPI_INT, out.process, comm);
+  out.error.resize(length);
+  MPI_Bcast(out.error.data(), length, MPI_CHAR, out.process, comm);
+  return out;
 }
 
 }  // namespace contactqp::detail
@@ -144,6 +154,6 @@ CONTACTQP_BUILTIN(mpi_processes) {
     PetscRuntime::instance(petsc_options_of(library_options));
   };
   mpi.connect = connect_mpi;
-  mpi.agree_on_exit = mpi_agree_on_exit;
+  mpi.agree_on_failure = mpi_agree_on_failure;
   register_process_runtime(mpi);
 }

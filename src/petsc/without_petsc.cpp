@@ -20,7 +20,9 @@ int mpi_rank() { return -1; }
 int mpi_size() { return 0; }
 void sum_over_ranks(double*, long) {}
 void connect_mpi() {}
-int mpi_agree_on_exit(int status, const std::string&, double) { return status; }
+AgreedFailure mpi_agree_on_failure(int status, const std::string& error, double) {
+  return {status, error, error.empty() ? -1 : 0, !error.empty()};
+}
 
 std::shared_ptr<const LinearSolver> make_petsc_solver(const Eigen::SparseMatrix<double>&, const LinearSolverOptions&,
                                                       const MatrixLayout&) {

@@ -1,4 +1,4 @@
-// process_rank(), process_count(), start_process_runtime() and agree_on_exit() (processes.hpp):
+// process_rank(), process_count(), start_process_runtime() and agree_on_failure() (processes.hpp):
 // the launcher's environment, or the runtime a library registered once it runs.
 #include "contactqp/processes.hpp"
 
@@ -76,13 +76,17 @@ void start_process_runtime(const std::map<std::string, std::string>& library_opt
   if (r.start) r.start(library_options);
 }
 
-int agree_on_exit(int status, const std::string& error_line, double timeout_seconds) {
+AgreedFailure agree_on_failure(int status, const std::string& error, double timeout_seconds) {
   const ProcessRuntime r = runtime();
-  if (running_count(r) > 1) return r.agree_on_exit(status, error_line, timeout_seconds);
-  // No runtime between the processes (a failure before it started, the same on every
-  // process): each decides alone, and only process 0 speaks.
-  if (!error_line.empty() && process_rank() == 0) std::cerr << error_line << "\n";
-  return status;
+  if (running_count(r) > 1) return r.agree_on_failure(status, error, timeout_seconds);
+  // No runtime between the processes (one process, or a failure before it started, the same on
+  // every process): each decides alone, and process 0 speaks for all.
+  AgreedFailure agreed;
+  agreed.status = status;
+  agreed.error = error;
+  agreed.process = error.empty() ? -1 : 0;
+  agreed.everywhere = !error.empty();
+  return agreed;
 }
 
 }  // namespace contactqp

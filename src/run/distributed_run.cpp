@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "contactqp/errors.hpp"
 #include "qp/builtins.hpp"
 #include "qp/registrations.hpp"
 
@@ -27,6 +28,11 @@ const DistributedRun* taker(const Scene& scene, const RunOptions& options, std::
 }  // namespace
 
 void register_distributed_run(DistributedRun run) { distributed_runs().add(std::move(run)); }
+
+void refuse_steps_on_several_processes(Backend backend) {
+  throw InputError("steps", "are not solved by the " + to_string(backend) +
+                                " backend on several processes (under mpirun) yet: run the scene on one process");
+}
 
 bool runs_distributed(const Scene& scene, const RunOptions& options) {
   std::vector<DistributedRun> runs;

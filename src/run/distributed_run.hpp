@@ -25,4 +25,8 @@ bool runs_distributed(const Scene& scene, const RunOptions& options);
 // The run of the first registered distributed run that takes it. Collective.
 RunReport run_scene_distributed(const Scene& scene, const RunOptions& options);
 
+// Load steps on several processes, which neither the distributed run nor a problem held in
+// parts solves yet: one refusal for both (InputError naming "steps").
+[[noreturn]] void refuse_steps_on_several_processes(Backend backend);
+
 }  // namespace contactqp::detail

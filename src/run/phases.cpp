@@ -1,5 +1,5 @@
-// begin_phase() and checkpoint() (phases.hpp): agree_on_exit() with nothing to report, at every
-// boundary, so that a process that failed is met wherever the others are.
+// begin_phase() and checkpoint() (phases.hpp): agree_on_failure() with nothing to report, at
+// every boundary, so that a process that failed is met wherever the others are.
 #include "run/phases.hpp"
 
 #include "contactqp/processes.hpp"
@@ -9,7 +9,7 @@ namespace contactqp::detail {
 void checkpoint() {
   if (process_count() <= 1) return;
   // A well process has no line, so it waits as long as the others need: a failed one bounds it.
-  const int status = agree_on_exit(0, "");
+  const int status = agree_on_failure().status;
   if (status != 0) throw FailedElsewhere(status);
 }
 

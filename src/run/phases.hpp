@@ -1,8 +1,9 @@
 // The phases of a run and the boundaries between them, where the processes of a run launched
-// together (mpirun) agree that none has failed (docs/petsc.md, "When one rank fails"). A process
-// that fails leaves its phase at once for main(), which hands its status and its one line to
-// agree_on_exit() (processes.hpp); the others meet that call at their next boundary, learn the
-// status there and end with it, quietly: the failed process prints its line, once.
+// together (mpirun) agree that none has failed (docs/petsc.md, "When one rank fails"), by the
+// one protocol, agree_on_failure() (processes.hpp). A process that fails leaves its phase at once
+// for main(), which hands its status and its error to agree_on_failure(); the others meet that
+// call at their next boundary, learn the status there and end with it, quietly: the failed
+// process prints its line, once.
 //
 // The rule for phase code: work that can fail on one process alone (reading, checking, element
 // loops, allocations) goes before the phase's first call that needs every process (a collective
@@ -33,13 +34,14 @@ class FailedElsewhere : public std::exception {
 // has if CONTACTQP_TEST_FAULT names it (test_fault.cpp). Throws FailedElsewhere.
 void begin_phase(const std::string& phase);
 
-// The same agreement within a phase: before a collective that follows local work that can
-// fail, and before output files are renamed into place (nothing is written unless every
-// process got there).
+// The same agreement within a phase: after local work that can fail on some processes only
+// (rank 0 meshing the coarse body, one rank's part holding a bad value) and before the
+// collective that follows it, and before output files are renamed into place (nothing is
+// written unless every process got there). Throws FailedElsewhere; nothing on one process.
 void checkpoint();
 
 // How long a process that failed waits for the others to reach a boundary before it prints its
-// line and ends them all (agree_on_exit): failure_grace_seconds (30 s), or the test fault's GRACE.
+// line and ends them all (agree_on_failure): failure_grace_seconds (30 s), or the test fault's GRACE.
 double failed_process_grace_seconds();
 
 // CONTACTQP_TEST_FAULT=RANK:PHASE:KIND[:GRACE], for tests only: process RANK throws as PHASE begins —

@@ -29,9 +29,7 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   // needs K whole.
   const std::shared_ptr<detail::ProblemInParts> in_parts =
       options.no_contact ? nullptr : detail::assemble_in_parts(*model, scene.solver);
-  if (in_parts && !scene.steps.empty())
-    throw InputError("steps", "are not solved on a problem held in parts (the " + to_string(scene.solver.backend) +
-                                  " backend on several processes): run the scene on one");
+  if (in_parts && !scene.steps.empty()) detail::refuse_steps_on_several_processes(scene.solver.backend);
   // The whole QP, which load steps change step by step (loads, gaps, friction offset).
   const std::shared_ptr<QuadraticProgram> whole =
       in_parts ? nullptr : std::make_shared<QuadraticProgram>(assemble_qp(*model));

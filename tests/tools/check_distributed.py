@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """ctest entry for the distributed run (docs/petsc.md, "Distributed runs"): the petsc backend
-under `mpirun -n N` for each N of RANKS (default 1 2 4; on one process with --distributed)
-against one process of the serial path (today's code) on the same mesh. Checks, relative 1e-8:
---no-contact (one linear solve by the distributed run's KSP and hierarchy) against one process's;
+under `mpirun -n N` for each N of RANKS (default 1 2 4; one process takes it too, --distributed
+being redundant there) against one process of active_set (CHOLMOD, a direct solve of each step) on
+the same mesh. Checks, relative 1e-8:
+--no-contact (one linear solve by the distributed run's KSP and hierarchy) against CHOLMOD's;
 u and the contact forces at every node (the ParaView arrays, matched by the nodes' coordinates,
 which are the same to the bit), the force, a (or b), p0, J; that each .pvtu opens in VTK
 (python3-vtk9) with exactly the one-process .vtu's points, cells and arrays; one summary, no
@@ -70,9 +71,11 @@ def main(cli, mpiexec, scene, workdir, *ranks):
         return os.path.join(workdir, name)
 
     solve = [cli, "solve", scene, "--backend", "petsc", "--tol", "1e-10", "--quiet"]
-    code, out, err = run(solve + ["--vtu", path("serial.vtu"), "--json", path("serial.json")], env)
-    check(code == 0, "one process, serial path: converged (exit %d) %s" % (code, err.strip()))
-    # One rank takes the distributed path only when asked (--distributed).
+    # The reference: active_set on one process, the one-process path with K whole.
+    direct_solve = [cli, "solve", scene, "--backend", "active_set", "--tol", "1e-10", "--quiet"]
+    code, out, err = run(direct_solve + ["--vtu", path("serial.vtu"), "--json", path("serial.json")], env)
+    check(code == 0, "one process, active_set: converged (exit %d) %s" % (code, err.strip()))
+    # One rank takes the distributed path by default; --distributed is accepted (and redundant).
     runs = {"distributed %d" % n: [mpiexec, "-n", str(n), "--oversubscribe"] + solve + (["--distributed"] if n == 1 else [])
             for n in ranks}
     for label, command in runs.items():
@@ -130,7 +133,8 @@ def main(cli, mpiexec, scene, workdir, *ranks):
     # --no-contact: the contact rows dropped, one linear solve of A by the distributed run's own
     # KSP and hierarchy, against one process's linear solve (CHOLMOD) on the same mesh.
     linear = [cli, "solve", scene, "--backend", "petsc", "--tol", "1e-10", "--quiet", "--no-contact"]
-    code, out, err = run(linear + ["--vtu", path("linear.vtu"), "--json", path("linear.json")], env)
+    direct = [cli, "solve", scene, "--backend", "active_set", "--tol", "1e-10", "--quiet", "--no-contact"]
+    code, out, err = run(direct + ["--vtu", path("linear.vtu"), "--json", path("linear.json")], env)
     check(code == 0, "--no-contact, one process: exit %d %s" % (code, err.strip()[-300:]))
     code, out, err = run(mpi + linear + (["--distributed"] if n == "1" else []) +
                          ["--vtu", path("linear-distributed.pvtu"), "--json", path("linear-distributed.json")], env)

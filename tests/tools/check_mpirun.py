@@ -4,7 +4,8 @@ converges, prints its summary once and writes its files once; u and the contact 
 with active_set (u <= 1e-6, lambda <= 1e-5, relative 2-norms) and with the same run on one
 rank (1e-8); on 2 ranks the run is distributed (each rank holds at most 0.6 of the DOFs, its
 ParaView piece in a .pvtu) and the certificate's duality gap is still measured; bad input under
-mpirun ends both ranks with exit status 2 and one line.
+mpirun ends both ranks with exit status 2 and one line, load steps (one body or two) with the
+same one.
 
 usage: check_mpirun.py CONTACTQP MPIEXEC SCENE WORKDIR"""
 import json
@@ -102,6 +103,15 @@ def main(cli, mpiexec, scene, workdir):
     code, out, err = run(mpi + [cli, "solve", scene, "--backend", "petsc", "--tol", "7"], env)
     lines = [line for line in err.splitlines() if line.startswith("contactqp")]
     check(code == 2 and len(lines) == 1 and "--tol" in lines[0], "bad --tol under mpirun: exit %d, %s" % (code, lines))
+    # Load steps on several processes, refused alike by the distributed run (one body) and by the
+    # problem in parts (two bodies): exit 2, one line, the same words.
+    scenes = os.path.dirname(os.path.abspath(scene))
+    for name in ("p-delta.json", "mindlin-cylinders.json"):
+        code, out, err = run(mpi + [cli, "solve", os.path.join(scenes, name), "--backend", "petsc", "--quiet"], env)
+        lines = [line for line in err.splitlines() if line.startswith("contactqp")]
+        check(code == 2 and len(lines) == 1 and lines[0].startswith(
+            "contactqp: error: steps are not solved by the petsc backend on several processes"),
+            "%s under mpirun: exit %d, %s" % (name, code, lines))
     return 1 if failures else 0
 
 
