@@ -1,0 +1,112 @@
+// The energy-error estimate (docs/estimate.md) against the true energy error of Hertz's cylinder:
+// the strain energy against Clapeyron's, the effectivity on a nested sequence of meshes against
+// a finer mesh of the same scene, the estimate's rate under refinement, where the indicators
+// are largest, and the estimate on 3D, pairs and friction.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "contactqp/run.hpp"
+#include "test_support.hpp"
+
+using namespace contactqp;
+using namespace contactqp::testing;
+
+namespace {
+
+// Hertz's half cylinder (R = 1, E = 1, ν = 0.3) pushed by 0.016 onto a rigid plane, as
+// scenes/hertz.json with coarser sizes. Level n asks Gmsh for sizes and grading 2ⁿ times smaller
+// with `refinements` n, which Gmsh meshes 2ⁿ times larger: every level meshes the same coarse
+// mesh and splits it n times, so the meshes are nested (up to the arc's new nodes, put back on
+// the circle).
+std::string hertz_level(int level, int order) {
+  const double scale = std::ldexp(1.0, -level);
+  char text[1024];
+  std::snprintf(text, sizeof text, R"({
+    "model": "plane_strain",
+    "material": {"E": 1.0, "nu": 0.3},
+    "body": {"shape": "half_disc", "radius": 1.0, "symmetry": true,
+             "mesh": {"size": %.17g, "contact_size": %.17g, "grading": %.17g, "refinements": %d, "order": %d}},
+    "load": {"type": "displacement", "boundary": "top", "value": [null, -0.016]},
+    "obstacle": {"type": "plane", "point": [0.0, 0.0], "normal": [0.0, 1.0]},
+    "solver": {"backend": "active_set", "tol": 1e-11}
+  })",
+                0.25 * scale, 0.025 * scale, 0.2 * scale, level, order);
+  return text;
+}
+
+RunReport run_level(int level, int order) { return run_scene(parse_scene(hertz_level(level, order), "hertz")); }
+
+}  // namespace
+
+TEST_CASE("the strain energy is Clapeyron's: half the work of the supports and the obstacle", "[estimate]") {
+  // Without body forces ½ a(u, u) = ½ (u_D · R − λᵀg): the supports' reactions R do work on the
+  // prescribed displacement u_D, the obstacle's forces λ n on u·n = −g where λ > 0.
+  const int order = GENERATE(1, 2);
+  CAPTURE(order);
+  const RunReport report = run_level(0, order);
+  REQUIRE(report.result.status == Status::Converged);
+  REQUIRE(report.strain_energy);
+  REQUIRE(report.reactions.size() == 1);
+  const double supports = report.reactions[0].force.y() * -0.016;
+  const double obstacle = -report.result.lambda.dot(report.qp->g);
+  const double clapeyron = 0.5 * (supports + obstacle);
+  CAPTURE(*report.strain_energy, clapeyron);
+  CHECK(std::abs(*report.strain_energy - clapeyron) <= 1e-8 * clapeyron);
+  REQUIRE(report.error_estimate);
+  CHECK(report.error_estimate->strain_energy == *report.strain_energy);
+}
+
+TEST_CASE("the estimate tracks the true energy error of Hertz's cylinder and falls at its rate", "[estimate]") {
+  // The true error from energies: the discrete solutions minimise the energy over nested admissible
+  // sets, so E_h − E_ref = ½‖u_h − u_ref‖² + ∫ λ_ref s_h ≥ ½‖u_h − u_ref‖² (docs/estimate.md): the
+  // error in the energy norm is sqrt(2 (E_h − E_ref)), less the reference's own error, which two
+  // levels finer is a quarter (P1) or less (P2) of the coarser level's.
+  const int order = GENERATE(1, 2);
+  CAPTURE(order);
+  const int levels = 3, reference = 4;
+  const RunReport finest = run_level(reference, order);
+  REQUIRE(finest.result.status == Status::Converged);
+  const double energy = *finest.strain_energy;
+  std::vector<double> estimates;
+  for (int level = 0; level < levels; ++level) {
+    CAPTURE(level);
+    const RunReport report = run_level(level, order);
+    REQUIRE(report.result.status == Status::Converged);
+    REQUIRE(report.error_estimate);
+    const ErrorEstimate& e = *report.error_estimate;
+    const double difference = *report.strain_energy - energy;
+    REQUIRE(difference > 0);
+    const double error = std::sqrt(2 * difference);
+    const double effectivity = e.estimate / error;
+    CAPTURE(report.size.dofs, e.estimate, e.recovery, e.contact, error, effectivity);
+    CHECK(effectivity >= 0.5);
+    CHECK(effectivity <= 3.0);
+    CHECK(std::abs(e.relative - e.estimate / std::sqrt(2 * e.strain_energy)) <= 1e-12);
+    CHECK(std::abs(e.indicator.squaredNorm() - e.estimate * e.estimate) <= 1e-10 * e.estimate * e.estimate);
+    estimates.push_back(e.estimate);
+    // The largest indicator near the contact zone (b ≈ 0.1 R): that is where the stress varies.
+    Eigen::Index largest = 0;
+    e.indicator.maxCoeff(&largest);
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    const Mesh& mesh = report.model->mesh;
+    for (int k = 0; k < mesh.dim + 1; ++k) centre += mesh.nodes[mesh.element(static_cast<int>(largest))[k]];
+    centre /= mesh.dim + 1;
+    CAPTURE(centre.transpose());
+    CHECK(centre.norm() < 0.3);
+  }
+  // Uniform splits halve h: P1's energy error falls like h (factor 1/2), P2's like h^1.5 or
+  // faster until the contact zone's edge limits it (the pressure's square root there).
+  for (int level = 1; level < levels; ++level) {
+    const double rate = std::log2(estimates[level - 1] / estimates[level]);
+    CAPTURE(level, rate);
+    if (order == 1) {
+      CHECK(rate > 0.8);
+      CHECK(rate < 1.3);
+    } else {
+      CHECK(rate > 1.2);
+      CHECK(rate < 2.3);
+    }
+  }
+}
