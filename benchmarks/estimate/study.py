@@ -52,10 +52,32 @@ def hertz_level(tmp, level, order):
     return path
 
 
-def effectivity(contactqp, finest):
+SPHERE = {
+    "model": "solid",
+    "material": {"E": 1.0, "nu": 0.3},
+    "body": {"shape": "hemisphere", "radius": 1.0, "symmetry": True, "mesh": {}},
+    "load": {"type": "displacement", "boundary": "top", "value": [None, None, -0.01]},
+    "obstacle": {"type": "plane", "point": [0.0, 0.0, 0.0], "normal": [0.0, 0.0, 1.0]},
+    "solver": {"backend": "active_set", "tol": 1e-10},
+}
+
+
+def sphere_level(tmp, level, order):
+    scale = 2.0 ** -level
+    scene = json.loads(json.dumps(SPHERE))
+    scene["body"]["mesh"] = {"size": 0.4 * scale, "contact_size": 0.04 * scale, "grading": 0.6 * scale,
+                             "refinements": level, "order": order}
+    path = os.path.join(tmp, f"sphere-{order}-{level}.json")
+    with open(path, "w") as f:
+        json.dump(scene, f)
+    return path
+
+
+def effectivity(contactqp, finest, name="hertz-2d", make=hertz_level, orders=(1, 2)):
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
-        for order in (1, 2):
+        for order in orders:
+            hertz_level = make
             reference = run(contactqp, hertz_level(tmp, finest, order))
             energy = reference["strain_energy"]
             previous = None
@@ -66,7 +88,7 @@ def effectivity(contactqp, finest):
                 error = math.sqrt(2 * difference) if difference > 0 else float("nan")
                 rate = math.log2(previous / e["energy_norm"]) if previous else float("nan")
                 previous = e["energy_norm"]
-                rows.append({"scene": "hertz-2d", "order": order, "level": level, "dofs": r["dofs"],
+                rows.append({"scene": name, "order": order, "level": level, "dofs": r["dofs"],
                              "strain_energy": r["strain_energy"], "reference_energy": energy,
                              "reference_dofs": reference["dofs"], "true_error": error,
                              "estimate": e["energy_norm"], "recovery": e["recovery"], "contact": e["contact"],
@@ -118,13 +140,16 @@ def main():
     parser.add_argument("--contactqp", default="build/contactqp")
     parser.add_argument("--out", default="benchmarks/estimate/results")
     parser.add_argument("--finest", type=int, default=4, help="the reference level (refinements, at most 4)")
+    parser.add_argument("--finest-3d", type=int, default=2, help="the sphere's reference level (0: no 3D rows)")
     parser.add_argument("--repeats", type=int, default=3, help="runs per cost scene; the fastest is kept")
     args = parser.parse_args()
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     os.makedirs(args.out, exist_ok=True)
     eff = effectivity(args.contactqp, args.finest)
+    if args.finest_3d > 0:
+        eff += effectivity(args.contactqp, args.finest_3d, "hertz-3d", sphere_level, (1,))
     write_csv(os.path.join(args.out, "effectivity.csv"), eff)
-    print(markdown(eff, ["order", "level", "dofs", "true_error", "estimate", "recovery", "contact", "effectivity",
+    print(markdown(eff, ["scene", "order", "level", "dofs", "true_error", "estimate", "recovery", "contact", "effectivity",
                          "estimate_rate"]))
     costs = cost(args.contactqp, root, args.repeats)
     write_csv(os.path.join(args.out, "cost.csv"), costs)

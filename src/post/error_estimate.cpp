@@ -2,6 +2,7 @@
 // a recovered-stress part over the elements and a contact part over the contact faces.
 #include "contactqp/estimate.hpp"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
 #include <array>
@@ -184,8 +185,13 @@ VolumeParts volume_parts(const Model& model, const Eigen::VectorXd& displacement
 using FaceKey = std::array<int, 3>;
 FaceKey face_key(const int* nodes, int n_vertices) {
   FaceKey key{{-1, -1, -1}};
-  std::copy(nodes, nodes + n_vertices, key.begin());
-  std::sort(key.begin(), key.begin() + n_vertices);
+  for (int k = 0; k < n_vertices && k < 3; ++k) key[k] = nodes[k];
+  // Two or three entries: a sorting network.
+  if (key[0] > key[1]) std::swap(key[0], key[1]);
+  if (n_vertices == 3) {
+    if (key[1] > key[2]) std::swap(key[1], key[2]);
+    if (key[0] > key[1]) std::swap(key[0], key[1]);
+  }
   return key;
 }
 struct FaceKeyHash {
