@@ -44,4 +44,14 @@ ErrorEstimate estimate_error(const Model& model, const QuadraticProgram& qp, con
 // The strain energy alone (ErrorEstimate::strain_energy), for a run whose estimate is turned off.
 double strain_energy(const Model& model, const Eigen::VectorXd& u);
 
+// The energy norm of u_coarse − u_fine, sqrt(dᵀ K d), for two solutions of one scene on nested
+// meshes (every element of `fine` inside one of `coarse`, as a scene's `refinements` make them):
+// u_coarse is interpolated at the fine mesh's nodes (its element located, the isoparametric map
+// inverted by Newton's method), d is the difference at the fine model's free DOFs and K =
+// fine_qp.K (at prescribed DOFs both solutions take the scene's values). The true error of the
+// coarse solution, up to the fine one's own (docs/estimate.md). u_coarse and u_fine are the
+// free DOFs of each; the scene may not rotate DOF frames (std::invalid_argument).
+double energy_distance(const Model& coarse, const Eigen::VectorXd& u_coarse, const Model& fine,
+                       const QuadraticProgram& fine_qp, const Eigen::VectorXd& u_fine);
+
 }  // namespace contactqp

@@ -362,7 +362,8 @@ ContactParts add_contact_terms(const Model& model, const QuadraticProgram& qp, c
       // nodes whose rows hold; a pair's rows are linearised, and their slack is interpolated.
       if (f.target >= 0) sh = detail::project(model.scene.obstacles[f.target], position).gap;
       const double ds = point.measure * thickness;
-      complementarity += ds * ph * std::abs(sh);
+      // |p_h|: quadratic shape functions dip below 0, and so may p_h between nonnegative nodal values.
+      complementarity += ds * std::abs(ph) * std::abs(sh);
       penetration += ds * std::min(sh, 0.0) * std::min(sh, 0.0);
       if (friction) dissipation += ds * std::max(0.0, bh * wh.norm() + qh.dot(wh));
     }
