@@ -107,3 +107,98 @@ TEST_CASE("the estimate tracks the true energy error of Hertz's cylinder and fal
     }
   }
 }
+
+TEST_CASE("the estimate on a 3D sphere: Clapeyron's strain energy and indicators at the contact", "[estimate]") {
+  // The quarter of Hertz's sphere on 4-node and 10-node tetrahedra, coarse: the same checks as in 2D.
+  const int order = GENERATE(1, 2);
+  CAPTURE(order);
+  char text[1024];
+  std::snprintf(text, sizeof text, R"({"model": "solid", "material": {"E": 1.0, "nu": 0.3},
+      "body": {"shape": "hemisphere", "radius": 1.0, "symmetry": true,
+               "mesh": {"size": 0.4, "contact_size": 0.04, "grading": 0.6, "order": %d}},
+      "load": {"type": "displacement", "boundary": "top", "value": [null, null, -0.01]},
+      "obstacle": {"type": "plane", "point": [0.0, 0.0, 0.0], "normal": [0.0, 0.0, 1.0]},
+      "solver": {"backend": "active_set", "tol": 1e-10}})",
+                order);
+  const RunReport report = run_scene(parse_scene(text, "sphere"));
+  REQUIRE(report.result.status == Status::Converged);
+  REQUIRE(report.error_estimate);
+  const ErrorEstimate& e = *report.error_estimate;
+  const double supports = report.reactions[0].force.z() * -0.01 / mirror_copies(*report.model);
+  const double clapeyron = 0.5 * (supports - report.result.lambda.dot(report.qp->g));
+  CAPTURE(e.strain_energy, clapeyron, e.estimate, e.recovery, e.contact);
+  CHECK(std::abs(e.strain_energy - clapeyron) <= 1e-7 * clapeyron);
+  REQUIRE(e.indicator.size() == report.model->mesh.n_elements());
+  CHECK(e.recovery > 0);
+  CHECK(e.relative > 0.005);  // a coarse mesh: percent-level errors, not round-off
+  CHECK(e.relative < 0.5);
+  Eigen::Index largest = 0;
+  e.indicator.maxCoeff(&largest);
+  const Mesh& mesh = report.model->mesh;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 4; ++k) centre += mesh.nodes[mesh.element(static_cast<int>(largest))[k]];
+  CHECK((centre / 4).norm() < 0.4);  // a ≈ 0.1
+}
+
+TEST_CASE("the estimate between two bodies and with friction", "[estimate]") {
+  // Two cylinders (a pair, frictionless) and Mindlin's cylinders (Coulomb, load steps) on coarse
+  // meshes: the friction part is 0 without friction and positive where the zone has stick and slip.
+  SECTION("frictionless pair") {
+    const RunReport report = run_scene(parse_scene(R"({"model": "plane_strain", "bodies": [
+      {"name": "roller", "shape": "half_disc", "radius": 1.0, "symmetry": true,
+       "mesh": {"size": 0.2, "contact_size": 0.01}, "material": {"E": 1.0, "nu": 0.3},
+       "load": {"type": "displacement", "boundary": "top", "value": [null, -0.016]}},
+      {"name": "base", "shape": "half_disc", "radius": 2.0, "symmetry": true, "mirror": true,
+       "mesh": {"size": 0.4, "contact_size": 0.01}, "material": {"E": 2.0, "nu": 0.25},
+       "load": {"type": "displacement", "boundary": "top", "value": [null, 0.0]}}],
+      "contact": {"pair": ["roller.arc", "base.arc"]}, "solver": {"backend": "active_set", "tol": 1e-10}})",
+                                                   "pair"));
+    REQUIRE(report.result.status == Status::Converged);
+    REQUIRE(report.error_estimate);
+    const ErrorEstimate& e = *report.error_estimate;
+    CAPTURE(e.estimate, e.recovery, e.contact);
+    CHECK(e.contact > 0);  // the faces where contact ends
+    CHECK(e.friction == 0);
+    CHECK(e.relative > 0.005);
+    CHECK(e.relative < 0.5);
+    // Clapeyron with the roller's push: the base's cut is held at 0 and does no work.
+    const double clapeyron = 0.5 * (report.reactions[0].force.y() * -0.016 / mirror_copies(*report.model) -
+                                    report.result.lambda.dot(report.qp->g));
+    CHECK(std::abs(e.strain_energy - clapeyron) <= 1e-7 * clapeyron);
+  }
+  SECTION("Coulomb friction after load steps") {
+    const RunReport report = run_scene(parse_scene(R"({"model": "plane_strain", "bodies": [
+      {"name": "upper", "shape": "half_disc", "radius": 1.0, "mesh": {"size": 0.2, "contact_size": 0.002},
+       "material": {"E": 1.0, "nu": 0.3},
+       "load": [{"name": "push", "type": "displacement", "boundary": "top", "value": [null, -0.002]},
+                {"name": "shear", "type": "displacement", "boundary": "top", "value": [0.0004, null]}]},
+      {"name": "lower", "shape": "half_disc", "radius": 1.0, "mirror": true, "mesh": {"size": 0.2, "contact_size": 0.002},
+       "material": {"E": 1.0, "nu": 0.3}, "load": {"type": "displacement", "boundary": "top", "value": [0.0, 0.0]}}],
+      "contact": {"pair": ["upper.arc", "lower.arc"], "friction": {"coefficient": 0.3}},
+      "steps": [{"factors": {"push": 1}}, {"factors": {"shear": 1}}],
+      "solver": {"backend": "active_set", "tol": 1e-8}})",
+                                                   "friction"));
+    REQUIRE(report.result.status == Status::Converged);
+    REQUIRE(report.friction);
+    REQUIRE(report.error_estimate);
+    const ErrorEstimate& e = *report.error_estimate;
+    CAPTURE(e.estimate, e.recovery, e.contact, e.friction, report.contact.stick_size);
+    CHECK(e.friction > 0);
+    CHECK(e.friction <= e.contact);
+    CHECK(e.relative > 0.001);
+    CHECK(e.relative < 0.5);
+  }
+}
+
+TEST_CASE("\"estimate\": false leaves the strain energy and drops the estimate", "[estimate]") {
+  Scene scene = parse_scene(hertz_level(0, 1), "hertz");
+  const RunReport with = run_scene(scene);
+  scene = parse_scene(hertz_level(0, 1).replace(1, 0, "\"estimate\": false, "), "hertz");
+  CHECK_FALSE(scene.estimate);
+  const RunReport without = run_scene(scene);
+  CHECK_FALSE(without.error_estimate);
+  REQUIRE(without.strain_energy);
+  CHECK(*without.strain_energy == Approx(*with.strain_energy).epsilon(1e-12));
+  CHECK_THROWS_WITH(parse_scene(hertz_level(0, 1).replace(1, 0, "\"estimate\": 0, "), "hertz"),
+                    Catch::Matchers::Contains("estimate"));
+}
