@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "context.hpp"
 #include "contactqp/estimate.hpp"
 #include "contactqp/run.hpp"
+#include "context.hpp"
 #include "out_arguments.hpp"
 
 using namespace contactqp;
@@ -61,15 +61,17 @@ int main(int argc, char** argv) {
   bench::OutArguments arguments;
   if (!bench::parse_out_arguments(argc, argv, "estimate", arguments)) return 2;
   try {
-    const std::vector<Family> families =
-        arguments.quick ? std::vector<Family>{{"hertz-2d", false, 1, 1, 2}}
-                        : std::vector<Family>{{"hertz-2d", false, 1, 4, 4}, {"hertz-2d", false, 2, 3, 4},
-                                              {"hertz-3d", true, 1, 2, 2}, {"hertz-3d", true, 2, 2, 2}};
+    const std::vector<Family> families = arguments.quick ? std::vector<Family>{{"hertz-2d", false, 1, 1, 2}}
+                                                         : std::vector<Family>{{"hertz-2d", false, 1, 4, 4},
+                                                                               {"hertz-2d", false, 2, 3, 4},
+                                                                               {"hertz-3d", true, 1, 2, 2},
+                                                                               {"hertz-3d", true, 2, 2, 2}};
     std::ofstream eff(bench::output_path(arguments.out, "effectivity.csv"));
     eff << "scene,order,level,dofs,reference_dofs,strain_energy,reference_energy,true_error,energy_error,estimate,"
            "recovery,contact,effectivity,energy_effectivity,estimate_rate,error_rate,solve_seconds,estimate_seconds\n";
-    std::printf("| scene | order | level | DOFs | true error | estimate | recovery | contact | effectivity | rate of η |\n"
-                "|---|---|---|---|---|---|---|---|---|---|\n");
+    std::printf(
+        "| scene | order | level | DOFs | true error | estimate | recovery | contact | effectivity | rate of η |\n"
+        "|---|---|---|---|---|---|---|---|---|---|\n");
     for (const Family& f : families) {
       const RunReport finest = run_scene(parse_scene(hertz_level(f.sphere, f.reference, f.order), f.name));
       double last_estimate = NAN, last_error = NAN;
@@ -82,10 +84,11 @@ int main(int argc, char** argv) {
         const double energy_error = difference > 0 ? std::sqrt(2 * difference) : NAN;
         const double rate = std::log2(last_estimate / e.estimate), error_rate = std::log2(last_error / error);
         char line[1024];
-        std::snprintf(line, sizeof line, "%s,%d,%d,%lld,%lld,%.12e,%.12e,%.6e,%.6e,%.6e,%.6e,%.6e,%.4f,%.4f,%.3f,%.3f,%.4f,%.4f\n",
-                      f.name, f.order, level, r.size.dofs, finest.size.dofs, e.strain_energy, *finest.strain_energy,
-                      error, energy_error, e.estimate, e.recovery, e.contact, e.estimate / error,
-                      e.estimate / energy_error, rate, error_rate, solve_seconds(r), e.seconds);
+        std::snprintf(line, sizeof line,
+                      "%s,%d,%d,%lld,%lld,%.12e,%.12e,%.6e,%.6e,%.6e,%.6e,%.6e,%.4f,%.4f,%.3f,%.3f,%.4f,%.4f\n", f.name,
+                      f.order, level, r.size.dofs, finest.size.dofs, e.strain_energy, *finest.strain_energy, error,
+                      energy_error, e.estimate, e.recovery, e.contact, e.estimate / error, e.estimate / energy_error,
+                      rate, error_rate, solve_seconds(r), e.seconds);
         eff << line;
         std::printf("| %s | %d | %d | %lld | %.3g | %.3g | %.3g | %.3g | %.2f | %.2f |\n", f.name, f.order, level,
                     r.size.dofs, error, e.estimate, e.recovery, e.contact, e.estimate / error, rate);
@@ -95,13 +98,14 @@ int main(int argc, char** argv) {
     }
     const std::vector<std::string> scenes =
         arguments.quick ? std::vector<std::string>{"scenes/hertz.json"}
-                        : std::vector<std::string>{"scenes/hertz.json",          "scenes/hertz-order2.json",
-                                                   "scenes/hertz-sphere.json",   "scenes/punch.json",
-                                                   "scenes/two-cylinders.json",  "scenes/mindlin-cylinders.json",
+                        : std::vector<std::string>{"scenes/hertz.json",         "scenes/hertz-order2.json",
+                                                   "scenes/hertz-sphere.json",  "scenes/punch.json",
+                                                   "scenes/two-cylinders.json", "scenes/mindlin-cylinders.json",
                                                    "scenes/hertz-large.json"};
     std::ofstream cost(bench::output_path(arguments.out, "cost.csv"));
     cost << "scene,dofs,status,solve_seconds,estimate_seconds,ratio,total_seconds,estimate,relative\n";
-    std::printf("\n| scene | DOFs | solve [s] | estimate [s] | estimate / solve | relative η |\n|---|---|---|---|---|---|\n");
+    std::printf(
+        "\n| scene | DOFs | solve [s] | estimate [s] | estimate / solve | relative η |\n|---|---|---|---|---|---|\n");
     for (const std::string& scene : scenes) {
       // The fastest of three runs, so that a busy machine does not decide the ratio.
       RunReport best;

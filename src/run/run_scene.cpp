@@ -19,8 +19,9 @@ void add_error_estimate(const Scene& scene, const Model& model, const QuadraticP
   if (report.result.u.size() != qp.n_dofs()) return;  // no displacement to estimate (a failed solve)
   Stopwatch clock;
   if (scene.estimate) {
-    report.error_estimate = estimate_error(model, qp, report.result.u, report.no_contact ? Eigen::VectorXd() : report.result.lambda,
-                                           report.friction ? &*report.friction : nullptr);
+    report.error_estimate =
+        estimate_error(model, qp, report.result.u, report.no_contact ? Eigen::VectorXd() : report.result.lambda,
+                       report.friction ? &*report.friction : nullptr);
     report.strain_energy = report.error_estimate->strain_energy;
   } else {
     report.strain_energy = strain_energy(model, report.result.u);
