@@ -202,3 +202,28 @@ TEST_CASE("\"estimate\": false leaves the strain energy and drops the estimate",
   CHECK_THROWS_WITH(parse_scene(hertz_level(0, 1).replace(1, 0, "\"estimate\": 0, "), "hertz"),
                     Catch::Matchers::Contains("estimate"));
 }
+
+TEST_CASE("contactqp solve prints the estimate, writes it to the JSON and the VTU, and --no-estimate drops it",
+          "[estimate]") {
+  TemporaryDirectory directory;
+  const std::string scene = source_path("scenes/hertz-order2.json");
+  const std::string json_path = directory.path("out.json"), vtu_path = directory.path("out.vtu");
+  CliRun run = run_cli("solve " + scene + " --quiet --json " + json_path + " --vtu " + vtu_path);
+  REQUIRE(run.exit_status == 0);
+  CHECK_THAT(run.out, Catch::Matchers::Contains("strain energy E = ") && Catch::Matchers::Contains("error estimate eta"));
+  nlohmann::json result = nlohmann::json::parse(read_text(json_path));
+  const double energy = result["strain_energy"].get<double>(), eta = result["error_estimate"]["energy_norm"];
+  CHECK(energy > 0);
+  CHECK(result["error_estimate"]["relative"].get<double>() == Approx(eta / std::sqrt(2 * energy)).epsilon(1e-12));
+  CHECK(result["timings"].contains("estimate"));
+  CHECK(read_text(vtu_path).find("<CellData>\n        <DataArray type=\"Float64\" Name=\"error_indicator\"") !=
+        std::string::npos);
+
+  run = run_cli("solve " + scene + " --quiet --no-estimate --json " + json_path + " --vtu " + vtu_path);
+  REQUIRE(run.exit_status == 0);
+  CHECK_THAT(run.out, Catch::Matchers::Contains("(no error estimate)"));
+  result = nlohmann::json::parse(read_text(json_path));
+  CHECK(result["strain_energy"].get<double>() == Approx(energy).epsilon(1e-12));
+  CHECK_FALSE(result.contains("error_estimate"));
+  CHECK(read_text(vtu_path).find("error_indicator") == std::string::npos);
+}
