@@ -210,7 +210,8 @@ TEST_CASE("contactqp solve prints the estimate, writes it to the JSON and the VT
   const std::string json_path = directory.path("out.json"), vtu_path = directory.path("out.vtu");
   CliRun run = run_cli("solve " + scene + " --quiet --json " + json_path + " --vtu " + vtu_path);
   REQUIRE(run.exit_status == 0);
-  CHECK_THAT(run.out, Catch::Matchers::Contains("strain energy E = ") && Catch::Matchers::Contains("error estimate eta"));
+  CHECK_THAT(run.out,
+             Catch::Matchers::Contains("strain energy E = ") && Catch::Matchers::Contains("error estimate eta"));
   nlohmann::json result = nlohmann::json::parse(read_text(json_path));
   const double energy = result["strain_energy"].get<double>(), eta = result["error_estimate"]["energy_norm"];
   CHECK(energy > 0);
