@@ -13,6 +13,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 
 #include "contactqp/model.hpp"
@@ -32,6 +33,11 @@ struct ErrorEstimate {
   double friction = 0;  // the friction part of `contact`, sqrt of its terms' sum
   // η / ‖u_h‖, ‖u_h‖ = sqrt(2 · strain_energy): the estimated relative energy error; 0 when u_h = 0.
   double relative = 0;
+  // The estimated relative error of the contact force, (P_h − P)/P ≈ relative² (docs/estimate.md,
+  // "The contact force"): for a frictionless scene driven by prescribed displacements alone, whose
+  // energy is then homogeneous in the push and P its derivative, on linear elements; nullopt
+  // otherwise (force loads, friction, quadratic elements).
+  std::optional<double> force_relative;
   Eigen::VectorXd indicator;  // η_T per element (sqrt of energy), n_elements; Σ η_T² = η²
   double seconds = 0;         // the estimate's own time
 };

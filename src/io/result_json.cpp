@@ -199,14 +199,16 @@ json steps_json(const RunReport& report, int dim) {
 // The energy-error estimate (docs/estimate.md): η, its parts, η/‖u_h‖ and its cost; the
 // indicators per element are in the ParaView file (error_indicator).
 json error_estimate_json(const ErrorEstimate& e) {
-  return {{"energy_norm", number(e.estimate)},
-          {"relative", number(e.relative)},
-          {"recovery", number(e.recovery)},
-          {"contact", number(e.contact)},
-          {"friction", number(e.friction)},
-          {"max_indicator", number(e.indicator.size() ? e.indicator.maxCoeff() : 0.0)},
-          {"method", "recovered stress (nodal averages) + contact complementarity, penetration and friction terms"},
-          {"seconds", number(e.seconds)}};
+  json out = {{"energy_norm", number(e.estimate)},
+              {"relative", number(e.relative)},
+              {"recovery", number(e.recovery)},
+              {"contact", number(e.contact)},
+              {"friction", number(e.friction)},
+              {"max_indicator", number(e.indicator.size() ? e.indicator.maxCoeff() : 0.0)},
+              {"method", "recovered stress (nodal averages) + contact complementarity, penetration and friction terms"},
+              {"seconds", number(e.seconds)}};
+  if (e.force_relative) out["force_relative"] = number(*e.force_relative);
+  return out;
 }
 
 }  // namespace

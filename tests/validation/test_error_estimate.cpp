@@ -83,6 +83,17 @@ TEST_CASE("the estimate tracks the true energy error of Hertz's cylinder and fal
     CHECK(std::abs(e.relative - e.estimate / std::sqrt(2 * e.strain_energy)) <= 1e-12);
     CHECK(std::abs(e.indicator.squaredNorm() - e.estimate * e.estimate) <= 1e-10 * e.estimate * e.estimate);
     estimates.push_back(e.estimate);
+    // The contact force's estimated relative error (linear elements) against the reference's
+    // force: within a factor 3.
+    if (order == 1) {
+      REQUIRE(e.force_relative);
+      const double force_error = report.contact.total_force / finest.contact.total_force - 1;
+      CAPTURE(*e.force_relative, force_error);
+      CHECK(*e.force_relative >= force_error / 3);
+      CHECK(*e.force_relative <= 3 * force_error);
+    } else {
+      CHECK_FALSE(e.force_relative);
+    }
     // The largest indicator near the contact zone (b ≈ 0.1 R): that is where the stress varies.
     Eigen::Index largest = 0;
     e.indicator.maxCoeff(&largest);
