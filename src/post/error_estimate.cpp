@@ -176,7 +176,69 @@ VolumeParts volume_parts(const Model& model, const Eigen::VectorXd& displacement
   return parts;
 }
 
+// The same for linear elements, whose strain is constant: one gradient per element, and the
+// integral of the linear difference d = σ* − σ_h in closed form, ∫_T dᵀ C⁻¹ d =
+// |T| / ((dim + 1)(dim + 2)) · (Σ_i d_iᵀ C⁻¹ d_i + (Σ_i d_i)ᵀ C⁻¹ (Σ_i d_i)), d_i at the vertices.
+template <int dim>
+VolumeParts linear_volume_parts(const Model& model, const Eigen::VectorXd& displacement, bool recovery) {
+  const Mesh& mesh = model.mesh;
+  const int n_elements = mesh.n_elements();
+  const double thickness = dim == 2 ? model.scene.body.thickness : 1.0;
+  const double reference_measure = dim == 2 ? 0.5 : 1.0 / 6.0;
+  const std::vector<ElementLaw> laws = element_laws(model);
+  std::vector<Eigen::Matrix<double, kVoigt<dim>, kVoigt<dim>>> D(laws.size()), compliance(laws.size());
+  for (size_t b = 0; b < laws.size(); ++b) {
+    D[b] = laws[b].D;
+    compliance[b] = full_elasticity<dim>(laws[b]).inverse();
+  }
+  const Eigen::Matrix<double, dim, Eigen::Dynamic> dN = detail::cell_gradients<dim>(1, detail::cell_node<dim>(0));
+  ElementState<dim> state{Eigen::Matrix<double, dim, Eigen::Dynamic>(dim, dim + 1),
+                          Eigen::Matrix<double, dim, Eigen::Dynamic>(dim, dim + 1), 0.0};
+  Eigen::Matrix<double, kVoigt<dim>, Eigen::Dynamic> stress(kVoigt<dim>, n_elements);
+  Eigen::VectorXd measure(n_elements);
+  VolumeParts parts;
+  for (int e = 0; e < n_elements; ++e) {
+    const int* v = mesh.element(e);
+    for (int i = 0; i <= dim; ++i) {
+      state.X.col(i) = mesh.nodes[v[i]].template head<dim>();
+      state.U.col(i) = displacement.template segment<dim>(dim * v[i]);
+    }
+    double detJ = 0;
+    const Voigt<dim> strain = voigt_strain<dim>(state.gradient(dN, detJ));
+    stress.col(e) = state.stress(D[body_of_element(model, e)], strain);
+    measure[e] = detJ * reference_measure;
+    parts.energy += 0.5 * measure[e] * thickness * stress.col(e).dot(strain);
+  }
+  if (!recovery) return parts;
+  Eigen::Matrix<double, kVoigt<dim>, Eigen::Dynamic> recovered =
+      Eigen::Matrix<double, kVoigt<dim>, Eigen::Dynamic>::Zero(kVoigt<dim>, mesh.n_nodes());
+  Eigen::VectorXd weight = Eigen::VectorXd::Zero(mesh.n_nodes());
+  for (int e = 0; e < n_elements; ++e)
+    for (int i = 0; i <= dim; ++i) {
+      recovered.col(mesh.element(e)[i]) += measure[e] * stress.col(e);
+      weight[mesh.element(e)[i]] += measure[e];
+    }
+  for (int k = 0; k < mesh.n_nodes(); ++k)
+    if (weight[k] > 0) recovered.col(k) /= weight[k];
+  parts.squared = Eigen::VectorXd::Zero(n_elements);
+  for (int e = 0; e < n_elements; ++e) {
+    const auto& C = compliance[body_of_element(model, e)];
+    Voigt<dim> sum = Voigt<dim>::Zero();
+    double diagonal = 0;
+    for (int i = 0; i <= dim; ++i) {
+      const Voigt<dim> d = recovered.col(mesh.element(e)[i]) - stress.col(e);
+      diagonal += d.dot(C * d);
+      sum += d;
+    }
+    parts.squared[e] = measure[e] * thickness / ((dim + 1) * (dim + 2)) * (diagonal + sum.dot(C * sum));
+  }
+  return parts;
+}
+
 VolumeParts volume_parts(const Model& model, const Eigen::VectorXd& displacement, bool recovery) {
+  if (model.mesh.order == 1)
+    return model.dim == 2 ? linear_volume_parts<2>(model, displacement, recovery)
+                          : linear_volume_parts<3>(model, displacement, recovery);
   return model.dim == 2 ? volume_parts<2>(model, displacement, recovery)
                         : volume_parts<3>(model, displacement, recovery);
 }
@@ -306,10 +368,15 @@ ContactParts add_contact_terms(const Model& model, const QuadraticProgram& qp, c
 
   // The element each face belongs to.
   std::unordered_map<FaceKey, int, FaceKeyHash> owner;
-  for (const ContactFace& f : faces) owner.emplace(face_key(f.face.nodes.data(), dim), -1);
+  std::vector<char> on_face(mesh.n_nodes(), 0);  // only elements with a vertex on a contact face can own one
+  for (const ContactFace& f : faces) {
+    owner.emplace(face_key(f.face.nodes.data(), dim), -1);
+    for (int k = 0; k < dim; ++k) on_face[f.face.node(k)] = 1;
+  }
   const std::vector<std::vector<int>>& local_faces = element_faces(mesh.type());
   for (int e = 0; e < mesh.n_elements(); ++e) {
     const int* v = mesh.element(e);
+    if (!on_face[v[0]] && !on_face[v[1]] && !on_face[v[2]] && (dim == 2 || !on_face[v[3]])) continue;
     for (const std::vector<int>& local : local_faces) {
       int vertices[3];
       for (int k = 0; k < dim; ++k) vertices[k] = v[local[k]];
