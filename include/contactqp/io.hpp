@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "contactqp/certificate.hpp"
+#include "contactqp/estimate.hpp"
 #include "contactqp/post.hpp"
 
 namespace contactqp {
@@ -63,6 +64,11 @@ struct RunReport {
   bool no_contact = false;                    // a linear solve with the contact rows dropped (--no-contact)
   std::vector<std::string> warnings;          // also printed on stderr
   ProblemSize size;                           // the mesh's nodes and elements, the QP's DOFs and rows
+  // ½ uᵀKu of the whole displacement (ErrorEstimate::strain_energy) and the energy-error estimate
+  // (docs/estimate.md): a one-process run has both, the estimate unless the scene's "estimate"
+  // is false (--no-estimate); a distributed run neither.
+  std::optional<double> strain_energy;
+  std::optional<ErrorEstimate> error_estimate;
   // A run whose processes each hold part of the mesh (mpirun, src/distributed/) writes its
   // ParaView file in pieces: every process calls this with the .pvtu path (collective), which
   // writes its piece beside it and, on the first process, the .pvtu. Empty otherwise.
@@ -81,7 +87,8 @@ std::string profile_csv(const RunReport& report);
 // "sigma_xx", "sigma_yy", "sigma_xy", "sigma_zz" (3D also "sigma_yz", "sigma_xz"), "von_mises",
 // "contact_pressure" and "contact_force" (3 components, the obstacles' force on the body),
 // "gap" (on the contact boundary: the row's slack g − Bu at candidates, the deformed distance
-// to the nearest obstacle elsewhere; 0 off it) and "contact_boundary" (1 on it, 0 off it).
+// to the nearest obstacle elsewhere; 0 off it) and "contact_boundary" (1 on it, 0 off it); cell
+// data "error_indicator" (each element's η_T, docs/estimate.md) when the run has an estimate.
 // Binary (base64) arrays; no NaN.
 std::string vtu_document(const RunReport& report);
 
@@ -102,8 +109,10 @@ struct ContactFields {
 std::vector<PointArray> solution_arrays(const Model& model, const Eigen::VectorXd& displacement,
                                         const NodalStress& stress, const ContactFields& contact,
                                         const Eigen::VectorXd* body = nullptr);
-// A VTK XML unstructured grid (.vtu) of `mesh` with `arrays`, as vtu_document() writes it.
-std::string vtu_piece(const Mesh& mesh, const std::vector<PointArray>& arrays);
+// A VTK XML unstructured grid (.vtu) of `mesh` with `arrays`, as vtu_document() writes it, and
+// `cell_arrays` at its elements (`components` per element, e.g. "error_indicator").
+std::string vtu_piece(const Mesh& mesh, const std::vector<PointArray>& arrays,
+                      const std::vector<PointArray>& cell_arrays = {});
 // The parallel file (.pvtu) that joins pieces with these arrays (their values are not read):
 // `pieces` are the piece files' names relative to the .pvtu.
 std::string pvtu_document(const std::vector<PointArray>& arrays, const std::vector<std::string>& pieces);

@@ -268,6 +268,9 @@ struct Scene {
   // Load steps, solved in order, each from the state the last one left (quasi-static,
   // incremental). Empty: one step with every load in full.
   std::vector<LoadStep> steps;
+  // The energy-error estimate after the solve (docs/estimate.md): the scene's "estimate", the
+  // command line's --no-estimate.
+  bool estimate = true;
 
   int dim() const { return dimension(model); }
   // The scene's friction law: None when no boundary, obstacle or pair has friction.

@@ -31,6 +31,7 @@ struct SolveArguments {
   bool quiet = false;         // solve: no progress line
   bool phase_memory = false;  // solve: the peak memory of each phase on stderr
   bool no_contact = false;    // drop the contact rows: one linear solve of the same K
+  bool no_estimate = false;   // skip the energy-error estimate (the scene's "estimate": false)
   bool distributed = false;   // solve: the distributed path on one process too (petsc)
   std::string ordering;       // empty: SolveOptions' default (amd)
   std::string linear_solver;  // empty: the scene's solver.linear_solver (default cholmod)

@@ -75,6 +75,7 @@ int run_solve(const SolveArguments& arguments) {
   detail::begin_phase("read");
   Scene scene = load_scene(arguments.scene_path);
   apply_overrides(arguments, scene.solver);
+  if (arguments.no_estimate) scene.estimate = false;
 
   RunOptions options;
   options.build.max_elements = arguments.max_elements;
@@ -223,6 +224,8 @@ void add_solve_command(CLI::App& app, int& exit_status) {
   command->add_flag("--distributed", arguments->distributed,
                     "Accepted and redundant: the petsc backend runs distributed (each process holding only its "
                     "part of the mesh, model and output) on one process too wherever that path models the scene");
+  command->add_flag("--no-estimate", arguments->no_estimate,
+                    "Skip the energy-error estimate after the solve (over the scene's \"estimate\"; docs/estimate.md)");
   command->add_flag("--no-contact", arguments->no_contact,
                     "Drop the contact rows: one linear solve of the same K (the reference for timings)");
   command->footer(backends_help());

@@ -117,6 +117,14 @@ std::string summary_table(const RunReport& report) {
   if (c.dual_available)
     out += format("               J = %.10g, theta = %.10g, gap = %.2e (relative %.2e)\n", c.objective,
                   c.dual_objective, c.duality_gap, c.relative_gap);
+  if (const auto& e = report.error_estimate)
+    out += format(
+        "  energy       strain energy E = %.10g, error estimate eta = %.4g (%.3g%% of sqrt(2E); recovery %.3g, "
+        "contact %.3g)%s\n",
+        e->strain_energy, e->estimate, 100 * e->relative, e->recovery, e->contact,
+        e->force_relative ? format("; contact force error ~%.2g%%", 100 * *e->force_relative).c_str() : "");
+  else if (report.strain_energy)
+    out += format("  energy       strain energy E = %.10g (no error estimate)\n", *report.strain_energy);
   const ContactSummary& contact = report.contact;
   for (const ModelBody& body : model.bodies)
     out += format("  body         %s: %s, E = %g, nu = %g, %d nodes\n", body.name.c_str(),

@@ -196,6 +196,21 @@ json steps_json(const RunReport& report, int dim) {
   return list;
 }
 
+// The energy-error estimate (docs/estimate.md): η, its parts, η/‖u_h‖ and its cost; the
+// indicators per element are in the ParaView file (error_indicator).
+json error_estimate_json(const ErrorEstimate& e) {
+  json out = {{"energy_norm", number(e.estimate)},
+              {"relative", number(e.relative)},
+              {"recovery", number(e.recovery)},
+              {"contact", number(e.contact)},
+              {"friction", number(e.friction)},
+              {"max_indicator", number(e.indicator.size() ? e.indicator.maxCoeff() : 0.0)},
+              {"method", "recovered stress (nodal averages) + contact complementarity, penetration and friction terms"},
+              {"seconds", number(e.seconds)}};
+  if (e.force_relative) out["force_relative"] = number(*e.force_relative);
+  return out;
+}
+
 }  // namespace
 
 std::string result_json(const RunReport& report) {
@@ -330,6 +345,8 @@ std::string result_json(const RunReport& report) {
   if (!qp.friction.empty()) out["friction"] = {{"law", to_string(qp.friction.law)}};
   if (!report.steps.empty()) out["steps"] = steps_json(report, dim);
   out["timings"] = timings_json(report.timings);
+  if (report.strain_energy) out["strain_energy"] = number(*report.strain_energy);
+  if (const auto& e = report.error_estimate) out["error_estimate"] = error_estimate_json(*e);
   out["scene"] = scene_json(model);
   out["warnings"] = report.warnings;
   return out.dump(2) + "\n";

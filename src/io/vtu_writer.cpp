@@ -162,7 +162,8 @@ FrictionNodeFields friction_node_fields(const Model& model, const FrictionFields
 
 }  // namespace
 
-std::string vtu_piece(const Mesh& mesh, const std::vector<PointArray>& arrays) {
+std::string vtu_piece(const Mesh& mesh, const std::vector<PointArray>& arrays,
+                      const std::vector<PointArray>& cell_arrays) {
   std::vector<double> points(3 * mesh.n_nodes(), 0.0);
   for (int k = 0; k < mesh.n_nodes(); ++k)
     for (int c = 0; c < 3; ++c) points[3 * k + c] = mesh.nodes[k][c];
@@ -174,6 +175,7 @@ std::string vtu_piece(const Mesh& mesh, const std::vector<PointArray>& arrays) {
   // The arrays' bytes (in base64, 4 characters per 3 bytes) and some for the markup: one allocation.
   std::size_t n_values = 3 * n;
   for (const PointArray& array : arrays) n_values += array.components * n;
+  for (const PointArray& array : cell_arrays) n_values += array.components * n_cells;
   const std::size_t array_bytes = 8 * n_values + 8 * (connectivity.size() + offsets.size()) + n_cells;
   std::string out;
   out.reserve(4 * array_bytes / 3 + 4096);
@@ -184,7 +186,14 @@ std::string vtu_piece(const Mesh& mesh, const std::vector<PointArray>& arrays) {
          "      <PointData Scalars=\"von_mises\" Vectors=\"displacement\">\n";
   for (const PointArray& array : arrays)
     data_array(out, "Float64", array.name, array.components, array.values, array.components * n);
-  out += "      </PointData>\n      <Points>\n";
+  out += "      </PointData>\n";
+  if (!cell_arrays.empty()) {
+    out += "      <CellData>\n";
+    for (const PointArray& array : cell_arrays)
+      data_array(out, "Float64", array.name, array.components, array.values, array.components * n_cells);
+    out += "      </CellData>\n";
+  }
+  out += "      <Points>\n";
   data_array(out, "Float64", "Points", 3, points.data(), points.size());
   out += "      </Points>\n      <Cells>\n";
   data_array(out, "Int64", "connectivity", 1, connectivity.data(), connectivity.size());
@@ -259,7 +268,10 @@ std::string vtu_document(const RunReport& report) {
     arrays.push_back(scalar_array("contact_state", friction.state));
   }
   if (body.size()) arrays.push_back(scalar_array("body", body));
-  return vtu_piece(model.mesh, arrays);
+  std::vector<PointArray> cells;
+  if (report.error_estimate && report.error_estimate->indicator.size() == model.mesh.n_elements())
+    cells.push_back(scalar_array("error_indicator", report.error_estimate->indicator));
+  return vtu_piece(model.mesh, arrays, cells);
 }
 
 }  // namespace contactqp

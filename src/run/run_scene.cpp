@@ -3,6 +3,7 @@
 
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
+#include "contactqp/estimate.hpp"
 #include "contactqp/run.hpp"
 #include "contactqp/solve.hpp"
 #include "run/distributed_run.hpp"
@@ -10,6 +11,25 @@
 #include "run/problem_in_parts.hpp"
 
 namespace contactqp {
+namespace {
+
+// The strain energy and, unless the scene turns it off, the error estimate (docs/estimate.md),
+// timed as the phase "estimate".
+void add_error_estimate(const Scene& scene, const Model& model, const QuadraticProgram& qp, RunReport& report) {
+  if (report.result.u.size() != qp.n_dofs()) return;  // no displacement to estimate (a failed solve)
+  Stopwatch clock;
+  if (scene.estimate) {
+    report.error_estimate =
+        estimate_error(model, qp, report.result.u, report.no_contact ? Eigen::VectorXd() : report.result.lambda,
+                       report.friction ? &*report.friction : nullptr);
+    report.strain_energy = report.error_estimate->strain_energy;
+  } else {
+    report.strain_energy = strain_energy(model, report.result.u);
+  }
+  report.timings.add("estimate", clock.seconds());
+}
+
+}  // namespace
 
 RunReport run_scene(const Scene& scene, const RunOptions& options) {
   // Under mpirun the petsc backend's run is distributed: no process holds the whole mesh.
@@ -85,6 +105,7 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
     report.contact.max_pressure =
         std::max({report.contact.max_pressure, pair.max_nodal_pressure, pair.face_max_pressure});
   report.timings.add("postprocess", clock.seconds());
+  if (!in_parts) add_error_estimate(scene, *model, *qp, report);
 
   report.warnings = model->warnings;
   report.warnings.insert(report.warnings.end(), report.result.warnings.begin(), report.result.warnings.end());

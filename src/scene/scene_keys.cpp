@@ -82,7 +82,7 @@ Format::Format() {
                {"load", &load},         {"obstacle", &obstacle},
                {"contact", &contact},   {"transform", &transform},
                {"solver", &solver},     {"bodies", &bodies_entry},
-               {"steps", &step}};
+               {"steps", &step},        {"estimate"}};
 }
 
 const Format& format() {
