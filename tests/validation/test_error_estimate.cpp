@@ -201,7 +201,7 @@ TEST_CASE("the estimate between two bodies and with friction", "[estimate]") {
   }
 }
 
-TEST_CASE("\"estimate\": false leaves the strain energy and drops the estimate", "[estimate]") {
+TEST_CASE("a scene with estimate false keeps the strain energy and drops the estimate", "[estimate]") {
   Scene scene = parse_scene(hertz_level(0, 1), "hertz");
   const RunReport with = run_scene(scene);
   scene = parse_scene(hertz_level(0, 1).replace(1, 0, "\"estimate\": false, "), "hertz");
