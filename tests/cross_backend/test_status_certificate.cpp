@@ -19,7 +19,7 @@ namespace {
 // The stiffness of a chain of masses joined by springs k[i] between masses i and i+1, with
 // mass 0 grounded by a spring `ground` (0: the chain floats, K singular with the translation
 // (1, ..., 1) in its kernel).
-Eigen::MatrixXd chain_stiffness(const std::vector<double>& k, double ground = 0) {
+Eigen::MatrixXd spring_chain(const std::vector<double>& k, double ground = 0) {
   const int n = static_cast<int>(k.size()) + 1;
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
   for (int i = 0; i + 1 < n; ++i) {
@@ -33,37 +33,37 @@ Eigen::MatrixXd chain_stiffness(const std::vector<double>& k, double ground = 0)
 }
 
 // A wall to the right of mass j at `gap` (u_j ≤ gap) or to its left (−u_j ≤ gap).
-Eigen::RowVectorXd wall(int n, int j, double side) {
+Eigen::RowVectorXd wall_row(int n, int j, double side) {
   Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
   row(j) = side;
   return row;
 }
 
-struct Case {
+struct StatusCase {
   const char* name;
   QuadraticProgram qp;
   Status expected;         // Converged when the QP has a solution, else Infeasible or Unbounded
   Eigen::VectorXd u, lam;  // the solution known by hand, when unique in u
 };
 
-std::vector<Case> battery() {
-  std::vector<Case> cases;
+std::vector<StatusCase> status_battery() {
+  std::vector<StatusCase> cases;
   {
     // Three masses, springs 1 and 2, pushed right by 1 at mass 0 against a wall 0.5 right of
     // mass 2, a wall 2 left of mass 0 untouched: every spring carries 1 in compression, so
     // u = (0.5 + 1/2 + 1/1, 0.5 + 1/2, 0.5) and λ = (0, 1).
     Eigen::MatrixXd B(2, 3);
-    B << wall(3, 0, -1), wall(3, 2, 1);
+    B << wall_row(3, 0, -1), wall_row(3, 2, 1);
     const Eigen::Vector3d f(1, 0, 0);
     cases.push_back({"floating chain pushed against a wall",
-                     make_qp(chain_stiffness({1, 2}), f, B, Eigen::Vector2d(2, 0.5)), Status::Converged,
+                     make_qp(spring_chain({1, 2}), f, B, Eigen::Vector2d(2, 0.5)), Status::Converged,
                      Eigen::Vector3d(2, 1, 0.5), Eigen::Vector2d(0, 1)});
   }
   {
     // The same chain pulled left, with only the right wall: nothing stops it.
-    Eigen::MatrixXd B = wall(3, 2, 1);
+    Eigen::MatrixXd B = wall_row(3, 2, 1);
     cases.push_back({"floating chain pulled away from its wall",
-                     make_qp(chain_stiffness({1, 2}), Eigen::Vector3d(-1, 0, 0), B, Eigen::VectorXd::Constant(1, 0.5)),
+                     make_qp(spring_chain({1, 2}), Eigen::Vector3d(-1, 0, 0), B, Eigen::VectorXd::Constant(1, 0.5)),
                      Status::Unbounded,
                      {},
                      {}});
@@ -73,10 +73,10 @@ std::vector<Case> battery() {
     // 1.5 (springs 1 and 2 in series); the walls allow 0.5, so the tension is 0.5/1.5 and the
     // walls carry the rest of each end's load.
     Eigen::MatrixXd B(2, 3);
-    B << wall(3, 0, -1), wall(3, 2, 1);
+    B << wall_row(3, 0, -1), wall_row(3, 2, 1);
     const double tension = 0.5 / 1.5;
     cases.push_back({"floating chain pulled apart against two walls",
-                     make_qp(chain_stiffness({1, 2}), Eigen::Vector3d(-1, 0, 1), B, Eigen::Vector2d(0.25, 0.25)),
+                     make_qp(spring_chain({1, 2}), Eigen::Vector3d(-1, 0, 1), B, Eigen::Vector2d(0.25, 0.25)),
                      Status::Converged, Eigen::Vector3d(-0.25, -0.25 + tension / 1, 0.25),
                      Eigen::Vector2d(1 - tension, 1 - tension)});
   }
@@ -103,7 +103,7 @@ std::vector<Case> battery() {
     Eigen::MatrixXd B(2, 2);
     B << 1, 0, -1, 0;
     cases.push_back({"contradictory rows",
-                     make_qp(chain_stiffness({1}, 1), Eigen::Vector2d(0.3, 0), B, Eigen::Vector2d(-1, -1)),
+                     make_qp(spring_chain({1}, 1), Eigen::Vector2d(0.3, 0), B, Eigen::Vector2d(-1, -1)),
                      Status::Infeasible,
                      {},
                      {}});
@@ -111,8 +111,8 @@ std::vector<Case> battery() {
   {
     // Stiffness contrast 1e4, grounded at mass 0 by 1, pushed at mass 2 by 1e4 toward a wall 0.5
     // away: the free answer (1e4 + 1 + 1e-4 ...) passes the wall, which carries the rest.
-    const Eigen::MatrixXd K = chain_stiffness({1e4, 1}, 1);
-    Eigen::MatrixXd B = wall(3, 2, 1);
+    const Eigen::MatrixXd K = spring_chain({1e4, 1}, 1);
+    Eigen::MatrixXd B = wall_row(3, 2, 1);
     const Eigen::Vector3d f(0, 0, 1e4);
     // At the wall u2 = 0.5: masses 0 and 1 are a grounded spring 1 in series with 1e4.
     const double series = 1.0 / (1.0 + 1.0 / 1e4);  // springs ground (1) and 1e4 in series
@@ -126,10 +126,10 @@ std::vector<Case> battery() {
   {
     // A grounding spring 1e-12 of the chain's: pulled away from its wall, the answer would be
     // 1e12 long. Below kNullRelative the grounding counts as none: unbounded.
-    Eigen::MatrixXd B = wall(3, 2, 1);
+    Eigen::MatrixXd B = wall_row(3, 2, 1);
     cases.push_back(
         {"chain grounded by 1e-12, pulled away",
-         make_qp(chain_stiffness({1, 1}, 1e-12), Eigen::Vector3d(-1, 0, 0), B, Eigen::VectorXd::Constant(1, 0.5)),
+         make_qp(spring_chain({1, 1}, 1e-12), Eigen::Vector3d(-1, 0, 0), B, Eigen::VectorXd::Constant(1, 0.5)),
          Status::Unbounded,
          {},
          {}});
@@ -141,7 +141,7 @@ std::vector<Case> battery() {
 
 TEST_CASE("the hand-made answers of the status battery are KKT points", "[status]") {
   // The battery's own truth, checked independently of every backend.
-  for (const Case& c : battery()) {
+  for (const StatusCase& c : status_battery()) {
     if (c.expected != Status::Converged) continue;
     INFO(c.name);
     const Certificate certificate = certify(c.qp, c.u, c.lam);
@@ -151,7 +151,7 @@ TEST_CASE("the hand-made answers of the status battery are KKT points", "[status
 
 TEST_CASE("no backend's status claims more than the certificate shows", "[status][cross_backend]") {
   const double tol = 1e-8;
-  for (const Case& c : battery()) {
+  for (const StatusCase& c : status_battery()) {
     for (const Backend backend : available_backends(c.qp)) {
       INFO(c.name << " on " << to_string(backend));
       SolveOptions options;
