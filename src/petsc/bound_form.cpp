@@ -66,6 +66,15 @@ bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, Bou
         const int b = static_cast<int>(std::lower_bound(columns.begin(), columns.end(), it.col()) - columns.begin());
         block(a, b) = it.value();
       }
+    const std::string dependent =
+        "the contact rows of node group starting at row " + std::to_string(rows[0]) + " (" + std::to_string(r) +
+        " rows on " + std::to_string(c) +
+        " DOFs) are linearly dependent; the petsc backend needs independent rows at each node";
+    // More rows than DOFs are dependent: refused before T, which holds c rows, is filled.
+    if (r > c) {
+      message = dependent;
+      return false;
+    }
     // T = [rows of B; an orthonormal basis of the complement of their span].
     const Eigen::HouseholderQR<Eigen::MatrixXd> qr(block.transpose());
     const Eigen::MatrixXd basis = qr.householderQ();  // c × c, orthogonal
@@ -75,11 +84,8 @@ bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, Bou
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(T);
     // |det T| ≤ the product of its row lengths (Hadamard), with equality for orthogonal rows:
     // their ratio measures how far the rows are from dependent.
-    if (r > c || lu.rank() < c || std::abs(lu.determinant()) < 1e-8 * T.rowwise().norm().prod()) {
-      message = "the contact rows of node group starting at row " + std::to_string(rows[0]) + " (" + std::to_string(r) +
-                " rows on " + std::to_string(c) +
-                " DOFs) are linearly dependent; the petsc backend needs "
-                "independent rows at each node";
+    if (lu.rank() < c || std::abs(lu.determinant()) < 1e-8 * T.rowwise().norm().prod()) {
+      message = dependent;
       return false;
     }
     const Eigen::MatrixXd inverse = lu.inverse();
