@@ -35,6 +35,7 @@ QuadraticProgram scaled_qp(const QuadraticProgram& qp, const QpScaling& scaling)
   scaled.g = qp.g / scaling.displacement;
   scaled.rows = qp.rows;
   scaled.near_null_space = qp.near_null_space;  // directions: unchanged by the scaling of K
+  scaled.null_space = qp.null_space;            // the same
   scaled.coarse_space = qp.coarse_space;        // an interpolation: unchanged too
   // T's rows are unit directions like B's; the offset is a length, the threshold a force, μ a ratio.
   scaled.friction = qp.friction;

@@ -11,6 +11,7 @@
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/solve.hpp"
+#include "floating.hpp"
 #include "qp/no_solution.hpp"
 #include "qp/number_format.hpp"
 #include "qp/words.hpp"
@@ -149,13 +150,14 @@ bool beyond_any_stiffness(const QuadraticProgram& qp, const VectorXd& u) {
 
 // The status never claims more than the certificate shows; where it rejects the answer, look for
 // the evidence that no answer exists (rows that contradict each other, a free motion the load
-// drives) and say what was found.
-void certify_status(const QuadraticProgram& qp, const SolveOptions& options, const KOperations& K, SolveResult& result,
-                    const Certificate& certificate) {
+// drives) and say what was found. `known`: K's null space when the QP carries it (else it is
+// computed here). Returns the null space it used: n × 0 when it did not look or K is definite.
+Eigen::MatrixXd certify_status(const QuadraticProgram& qp, const SolveOptions& options, const KOperations& K,
+                               SolveResult& result, const Certificate& certificate, const Eigen::MatrixXd& known) {
   apply_certificate(result, certificate, options.tol);
-  if (!K.whole) return;
+  if (!K.whole) return {};
   const bool beyond = beyond_any_stiffness(qp, result.u);
-  if (result.status == Status::Converged && !beyond) return;
+  if (result.status == Status::Converged && !beyond) return {};
   if (beyond && result.status != Status::Converged) {
     // A last iterate that long is no answer to show (a free motion, or a solve that broke down).
     result.message += "; its last iterate (|u| up to " + short_number(result.u.cwiseAbs().maxCoeff()) +
@@ -169,8 +171,9 @@ void certify_status(const QuadraticProgram& qp, const SolveOptions& options, con
   Stopwatch clock;
   const VectorXd farkas = farkas_direction(qp, options.tol);
   VectorXd recession;
+  Eigen::MatrixXd R;
   if (farkas.size() == 0) {
-    const Eigen::MatrixXd R = qp.n_dofs() <= kNullSpaceMaxDofs ? null_space_of(qp.K) : Eigen::MatrixXd();
+    R = known.cols() > 0 ? known : qp.n_dofs() <= kNullSpaceMaxDofs ? null_space_of(qp.K) : Eigen::MatrixXd();
     result.null_space_dimension = static_cast<int>(R.cols());
     recession = recession_direction(qp, R);
     if (R.cols() > 0 && recession.size() == 0)
@@ -195,6 +198,7 @@ void certify_status(const QuadraticProgram& qp, const SolveOptions& options, con
     result.certificate = K.certify(result);
   }
   result.timings.add("diagnose", clock.seconds());
+  return R;
 }
 
 }  // namespace
@@ -292,19 +296,55 @@ SolveResult solve_with(const QuadraticProgram& qp, const SolveOptions& options, 
   }
   const SolveOptions& used = raised ? limited : options;
 
-  SolveResult result = run_backend(qp, used, K, backend_solve);
-  // The solver of K's statistics count the backend's solves, not the certificate's.
-  const LinearSolverStatistics statistics = result.K_factor ? result.K_factor->statistics() : LinearSolverStatistics{};
-  Stopwatch certifying;
-  Certificate certificate = K.certify(result);
-  const double certify_seconds = certifying.seconds();
-  tighten_once(qp, used, K, backend_solve, result, certificate);
+  // A definite QP of the proximal steps on K's free modes (floating.hpp), run like the QP itself.
+  const DefiniteSolve definite = [&backend_solve](const QuadraticProgram& q, const SolveOptions& o) {
+    return run_backend(q, o, whole_K(q), backend_solve);
+  };
+  // A QP that carries K's null space is solved on its free modes from the start (one process).
+  const bool free_modes = qp.null_space.cols() > 0 && K.whole;
+  const Eigen::MatrixXd R = free_modes ? orthonormal_null_space(qp.null_space, "qp.null_space") : Eigen::MatrixXd();
+
+  SolveResult result;
+  Certificate certificate;
+  LinearSolverStatistics statistics;
+  double certify_seconds = 0;
+  if (free_modes) {
+    result = solve_with_free_modes(qp, R, used, definite);  // certified inside, with K's generalised inverse
+    result.null_space_dimension = static_cast<int>(R.cols());
+    certificate = *result.certificate;
+    statistics = result.K_factor->statistics();
+  } else {
+    result = run_backend(qp, used, K, backend_solve);
+    // The solver of K's statistics count the backend's solves, not the certificate's.
+    statistics = result.K_factor ? result.K_factor->statistics() : LinearSolverStatistics{};
+    Stopwatch certifying;
+    certificate = K.certify(result);
+    certify_seconds = certifying.seconds();
+    tighten_once(qp, used, K, backend_solve, result, certificate);
+    if (result.diagnostics.count("tightened_tol") && result.K_factor) statistics = result.K_factor->statistics();
+  }
   if (raised) result.diagnostics["max_iterations"] = used.max_iterations;  // what the JSON's solver block reports
-  report_linear_solver(result, result.diagnostics.count("tightened_tol") && result.K_factor
-                                   ? result.K_factor->statistics()
-                                   : statistics);
+  report_linear_solver(result, statistics);
   result.timings.add("certify", certify_seconds);
-  certify_status(qp, options, K, result, certificate);
+  const Eigen::MatrixXd found = certify_status(qp, options, K, result, certificate, R);
+  // K turned out only semidefinite, with free modes the rows can hold: solve on them.
+  const bool no_answer = result.status == Status::Infeasible || result.status == Status::Unbounded;
+  if (!free_modes && !no_answer && found.cols() > 0 &&
+      (result.status != Status::Converged || beyond_any_stiffness(qp, result.u))) {
+    SolveResult held = solve_with_free_modes(qp, found, used, definite);
+    if (held.status == Status::Converged) {
+      held.null_space_dimension = static_cast<int>(found.cols());
+      held.message = "K is only positive semidefinite (" + std::to_string(found.cols()) +
+                     " free motions, found from its eigenvalues after a first run ended " + to_string(result.status) +
+                     "): " + held.message;
+      Timings timings = result.timings;
+      timings.merge(held.timings);
+      held.timings = timings;
+      held.iterations += result.iterations;
+      report_linear_solver(held);
+      result = std::move(held);
+    }
+  }
   // A diagnostic that is not finite (ρ_max with no constraints) is absent, not Inf.
   for (auto it = result.diagnostics.begin(); it != result.diagnostics.end();)
     it = std::isfinite(it->second) ? std::next(it) : result.diagnostics.erase(it);

@@ -65,6 +65,15 @@ struct LoadShare {
   std::vector<std::pair<int, double>> prescribed;  // (DOF, value) the load prescribes, as Model::prescribed holds it
 };
 
+// One rigid motion of a body that nothing prescribed holds, in the scene's own frame
+// (docs/extremes.md, "Bodies held only by their contacts").
+struct FreeMotion {
+  Eigen::VectorXd rigid;  // (t_x, t_y, r) in 2D, (t, ω) in 3D: t + ω × (x − centre)/extent
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // the rotations' centre: the part's centroid
+  double extent = 1;                                 // the rotations' scale: the part's size
+  int part = 0;                                      // the connected part of the mesh it moves
+};
+
 struct Model {
   // The scene as solved, in the global frame: its transform is applied (obstacles and load
   // vectors rotated) and reset; `rotation` remembers it (a rotation about z in 2D).
@@ -98,6 +107,11 @@ struct Model {
   // bodies holds every body's loads, in order). Empty without steps. The model as built has
   // every load in full; apply_load_step() sets a step's.
   std::vector<LoadShare> load_shares;
+  // A body that only its contacts hold: the rigid motions nothing prescribed stops, and the same
+  // on the free DOFs (n_free × k, K's null space: assemble_qp puts it in qp.null_space). Empty
+  // when the prescribed displacements hold the body. One-body scenes on one process.
+  std::vector<FreeMotion> free_motions;
+  Eigen::MatrixXd free_modes;
 
   int body_of_node(int node) const;  // 0 for a one-body model
 };
@@ -122,6 +136,11 @@ QuadraticProgram assemble_qp(Model& model, const std::vector<char>& elements = {
 // it depends on the last step's solution). InputError naming `step` when two loads then
 // prescribe one DOF to different values. Needs model.load_shares (a scene with steps).
 void apply_load_step(Model& model, QuadraticProgram& qp, const std::vector<double>& factors, const std::string& step);
+
+// A motion d of the free DOFs (e.g. SolveResult::recession) as the body's free rigid motions
+// that make it, in words in the scene's axes: "along +y", "by rotation about (0, 2), clockwise"; "" when
+// the model has no free motion.
+std::string describe_free_motion(const Model& model, const Eigen::VectorXd& d);
 
 // The full nodal displacement field (dim·n_nodes, global axes) from the free DOFs u.
 Eigen::VectorXd full_displacement(const Model& model, const Eigen::VectorXd& u);

@@ -36,7 +36,7 @@ struct ConstraintRow {
 };
 
 struct QuadraticProgram {
-  SparseMatrix K;                   // n × n stiffness, symmetric positive definite, both triangles stored
+  SparseMatrix K;                   // n × n stiffness, symmetric positive (semi)definite, both triangles stored
   VectorXd f;                       // n: load vector (prescribed displacements already moved here)
   SparseMatrix B;                   // m × n: contact rows, −nᵀ at the DOFs of one node each
   VectorXd g;                       // m: initial gaps along the obstacle normal, ≥ 0 unless penetrating
@@ -44,6 +44,12 @@ struct QuadraticProgram {
   // n × k rigid-body modes on the free DOFs (k = 3 in 2D), for algebraic multigrid in an
   // iterative solver of K; empty when unknown. Filled by assemble_qp; backends never need it.
   Eigen::MatrixXd near_null_space;
+  // n × k, the exact null space of K when K is only positive semidefinite (a body held only by its
+  // contacts: its free rigid modes), columns linearly independent; empty (n × 0 or 0 × 0) when K
+  // is positive definite. solve() then solves on the range of K and reports the free modes'
+  // balance Rᵀ(f − Bᵀλ) (docs/extremes.md, "Bodies held only by their contacts"); when it is
+  // empty and K turns out singular, solve() finds it itself from K's eigenvalues.
+  Eigen::MatrixXd null_space;
   // Quadratic elements: the P1 level for a multigrid solver of K (coarse_space.hpp); empty for
   // linear elements or when unknown. Filled by assemble_qp; backends never need it.
   CoarseSpace coarse_space;

@@ -43,7 +43,7 @@ std::string shape(const SparseMatrix& m) {
   return "(" + std::to_string(m.rows()) + ", " + std::to_string(m.cols()) + ")";
 }
 
-QuadraticProgram make_qp(py::handle K_in, py::handle f_in, py::handle B_in, py::handle g_in) {
+QuadraticProgram make_qp(py::handle K_in, py::handle f_in, py::handle B_in, py::handle g_in, py::handle R_in) {
   QuadraticProgram qp;
   qp.K = to_sparse(K_in, "K");
   qp.f = to_vector(f_in, "f");
@@ -78,6 +78,16 @@ QuadraticProgram make_qp(py::handle K_in, py::handle f_in, py::handle B_in, py::
   if (worst > kSymmetryTolerance * scale)
     throw InputError("K", "is not symmetric: max |K - K^T| = " + detail::format_value(worst) + " against max |K| = " +
                               detail::format_value(scale) + " (the stiffness must be symmetric positive definite)");
+  if (!R_in.is_none()) {
+    // A 1-D array is one mode; a 2-D array holds one mode per column (n × k).
+    py::object array = py::module_::import("numpy").attr("asarray")(R_in, "float64");
+    const py::tuple dims = array.attr("shape");
+    if (dims.size() < 1 || dims.size() > 2 || dims[0].cast<long>() != n)
+      throw InputError("null_space", "has shape " + py::repr(dims).cast<std::string>() + ", K has " +
+                                         std::to_string(n) + " rows: one mode per column, n x k");
+    if (dims.size() == 1) array = array.attr("reshape")(n, 1);
+    qp.null_space = array.cast<Eigen::MatrixXd>();
+  }
   validate(qp);  // the library's own checks, the same for every caller
   return qp;
 }
@@ -204,12 +214,15 @@ void bind_qp(py::module_& m) {
 K (n x n, symmetric positive definite) and B (m x n) are scipy.sparse matrices of any format
 or 2-D numpy arrays; f (n) and g (m) are 1-D arrays. B and g may both be None (no constraints).
 In qpsolvers' names: P = K, q = -f, G = B, h = g. The data are copied; the object is immutable.)")
-      .def(py::init([](py::object K, py::object f, py::object B, py::object g) {
-             return std::make_shared<QuadraticProgram>(make_qp(K, f, B, g));
+      .def(py::init([](py::object K, py::object f, py::object B, py::object g, py::object null_space) {
+             return std::make_shared<QuadraticProgram>(make_qp(K, f, B, g, null_space));
            }),
            py::arg("K"), py::arg("f"), py::arg("B") = py::none(), py::arg("g") = py::none(),
-           "QuadraticProgram(K, f, B=None, g=None); InputError names the argument on a wrong shape, a "
-           "non-finite entry or a K that is not symmetric.")
+           py::arg("null_space") = py::none(),
+           "QuadraticProgram(K, f, B=None, g=None, null_space=None); null_space (n x k, or one mode of n) "
+           "spans K's null space when K is only semidefinite (bodies held by their contacts; solve() finds it "
+           "itself when it is not given). InputError names the argument on a wrong shape, a non-finite entry, "
+           "a K that is not symmetric or a null_space column K does not annihilate.")
       .def_property_readonly(
           "K", [](const QuadraticProgram& qp) { return to_scipy(qp.K); }, "K as scipy.sparse.csc_matrix (a copy)")
       .def_property_readonly(
@@ -218,6 +231,12 @@ In qpsolvers' names: P = K, q = -f, G = B, h = g. The data are copied; the objec
           "B", [](const QuadraticProgram& qp) { return to_scipy(qp.B); }, "B as scipy.sparse.csc_matrix (a copy)")
       .def_property_readonly(
           "g", [](const QuadraticProgram& qp) { return qp.g; }, "g (a copy)")
+      .def_property_readonly(
+          "null_space",
+          [](const QuadraticProgram& qp) {
+            return qp.null_space.cols() > 0 ? Eigen::MatrixXd(qp.null_space) : Eigen::MatrixXd(qp.n_dofs(), 0);
+          },
+          "K's null space as given (n x k; k = 0 when none was)")
       .def_property_readonly("n_dofs", &QuadraticProgram::n_dofs, "n, the number of unknowns")
       .def_property_readonly("n_constraints", &QuadraticProgram::n_constraints, "m, the number of rows of B")
       .def(

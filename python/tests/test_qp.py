@@ -126,6 +126,28 @@ def test_help_shows_a_call_example():
         assert getattr(contactqp, name).__doc__, name
 
 
+def test_a_chain_held_only_by_its_wall_is_solved_on_its_free_mode():
+    """A free chain of springs 1 and 2 pushed by 1 against a wall 0.5 right of its last mass:
+    u = (2, 1, 0.5), lam = 1 by hand. With its null space given (or without: solve() finds it),
+    active_set solves it on the chain's translation and reports that mode's balance."""
+    K = sp.csr_matrix(np.array([[1.0, -1.0, 0.0], [-1.0, 3.0, -2.0], [0.0, -2.0, 2.0]]))
+    f, B, g = np.array([1.0, 0.0, 0.0]), sp.csr_matrix([[0.0, 0.0, 1.0]]), np.array([0.5])
+    held = contactqp.QuadraticProgram(K, f, B, g, null_space=np.ones(3))
+    assert held.null_space.shape == (3, 1)
+    assert contactqp.QuadraticProgram(K, f, B, g).null_space.shape == (3, 0)
+    for qp in (held, contactqp.QuadraticProgram(K, f, B, g)):
+        s = contactqp.solve(qp, backend="active_set", tol=1e-10)
+        assert s.converged, s.message
+        np.testing.assert_allclose(s.u, [2.0, 1.0, 0.5], rtol=1e-8)
+        np.testing.assert_allclose(s.lam, [1.0], rtol=1e-8)
+        assert s.null_space_dimension == 1
+        assert s.diagnostics["rigid_balance"] <= 1e-9
+    with pytest.raises(contactqp.InputError, match="null_space"):
+        contactqp.QuadraticProgram(K, f, B, g, null_space=np.array([1.0, 0.0, 0.0]))
+    with pytest.raises(contactqp.InputError, match="null_space"):
+        contactqp.QuadraticProgram(K, f, B, g, null_space=np.ones(2))
+
+
 def test_a_qp_without_solution_says_so_with_its_evidence(backend):
     """A floating chain pulled away from its only wall is unbounded; contradictory rows are
     infeasible: never CONVERGED, on every backend, with the evidence checked here."""

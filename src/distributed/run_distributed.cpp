@@ -105,6 +105,10 @@ bool takes_distributed_run(const Scene& scene, const RunOptions& options) {
   if (scene.solver.backend != Backend::Petsc || !scene.bodies.empty() || !scene.pairs.empty()) return false;
   if (process_count() > 1) return true;
   if (!options.distributed || !scene.steps.empty() || scene.friction_law() != FrictionLaw::None) return false;
+  // A body loaded by forces alone may be one that only its contacts hold, which the one-process
+  // path solves on its free motions (docs/extremes.md) and the distributed model refuses.
+  const auto displaced = [](const LoadSpec& load) { return load.is<DisplacementLoad>(); };
+  if (std::none_of(scene.loads.begin(), scene.loads.end(), displaced)) return false;
   // The one-process path's own methods (method=tao, hierarchy=fresh), which pdas_options() refuses.
   for (const auto& [key, value] : options_for(Backend::Petsc, scene.solver.backend_options))
     if ((key == "method" && value != "pdas") || (key == "hierarchy" && value != "kept")) return false;

@@ -92,6 +92,7 @@ QuadraticProgram assemble_qp(Model& model, const std::vector<char>& elements) {
   detail::add_contact_rows(model, qp);
   detail::add_friction_rows(model, qp);                  // nothing without friction
   qp.near_null_space = detail::rigid_body_modes(model);  // for AMG in an iterative solver of K
+  qp.null_space = model.free_modes;                      // a body only its contacts hold: its free motions
   qp.coarse_space = detail::p1_coarse_space(model);      // for its P1 level (quadratic elements)
   model.timings.add("assemble", clock.seconds());
   return qp;

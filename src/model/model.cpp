@@ -123,10 +123,13 @@ Model build_model(const Scene& scene, const BuildOptions& options) {
   model.scene.transform = TransformSpec{};
   model.dim = model.mesh.dim;
   detail::apply_displacement_conditions(model, scene, Eigen::Matrix3d::Identity());
-  detail::check_rigid_motions(model);  // in the scene's own axes, which the message names
   model.candidates = detail::select_candidates(model.mesh, scene.obstacles, scene.contact.boundary, model.max_gap);
   detail::remove_prescribed_candidates(model);
   const std::vector<int> point_nodes = detail::point_load_nodes(scene, model.mesh, model.warnings);
+  // Rigid motions the prescribed displacements leave free: held by the contacts, or refused
+  // (in the scene's own axes, which the message names) when the load drives one no row sees.
+  const Eigen::MatrixXd free_motions = detail::motions_held_by_contact(
+      model, [&] { return detail::nodal_forces(model.scene, model.mesh, point_nodes); });
 
   // Now turn the scene: nodes, obstacles and load vectors; prescribed components keep the
   // scene's axes through DOF frames.
@@ -136,6 +139,7 @@ Model build_model(const Scene& scene, const BuildOptions& options) {
   detail::apply_displacement_conditions(model, scene, model.rotation);
   model.nodal_force = detail::nodal_forces(model.scene, model.mesh, point_nodes);
   if (!scene.steps.empty()) model.load_shares = detail::load_shares(model, point_nodes);
+  if (free_motions.cols() > 0) model.free_modes = detail::free_modes_on_dofs(model, free_motions);
 
   detail::warn_near_incompressible(scene, model.mesh, model.warnings);
   model.timings.add("model", clock.seconds());

@@ -53,6 +53,43 @@ void apply_displacement_conditions(Model& model, const Scene& local_scene, const
 // body's K is singular.
 void check_rigid_motions(const Model& model);
 
+// The rigid motions each connected part of the mesh keeps free (rigid_motions.cpp), in rigid
+// coordinates: (t_x, t_y, r) in 2D, the rotation r about the centroid scaled by the extent;
+// (t, ω) in 3D, the displacement t + ω × (x − centre)/extent.
+struct PartFreedom {
+  int first_node = -1;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // the part's centroid (z = 0 in 2D)
+  double extent = 1;                                 // the largest distance of a node from it (1 when 0)
+  Eigen::MatrixXd null;                              // 3 × k or 6 × k: the motions nothing prescribed stops
+};
+struct RigidFreedom {
+  std::vector<int> part;  // the part of each node
+  std::vector<PartFreedom> parts;
+};
+RigidFreedom rigid_freedom(const Model& model);
+// The displacement at x of the motion with rigid coordinates `rigid` of `part` (z = 0 in 2D).
+Eigen::Vector3d rigid_motion_at(const PartFreedom& part, const Eigen::VectorXd& rigid, const Eigen::Vector3d& x,
+                                int dim);
+// One motion in words, signed: "along +y", "along (0.6, 0.8)", "by rotation about (0, 2), clockwise".
+std::string describe_motion(const Model& model, const PartFreedom& part, const Eigen::VectorXd& rigid);
+// check_rigid_motions' InputError for part p and the motions `null`, saying `why` they are refused.
+inline constexpr const char* kNothingHolds =
+    "no prescribed displacement stops it, so K is singular, and contact alone does not hold a body here";
+[[noreturn]] void refuse_free_part(const Model& model, const RigidFreedom& freedom, int p, const Eigen::MatrixXd& null,
+                                   const std::string& why);
+
+// held_by_contact.cpp: the free rigid motions of a one-body model that its contact candidates
+// can hold (docs/extremes.md, "Bodies held only by their contacts"). InputError as
+// check_rigid_motions when a free motion that the load drives (`scene_force`: the nodal forces
+// in the scene frame, as the model stands before it is turned; called only when a motion is
+// free) is seen by no candidate row: nothing
+// could ever stop it. Returns the free motions, one column each, as displacements at every
+// node (dim·n_nodes × k, scene axes); zero columns when the prescribed DOFs hold the body.
+Eigen::MatrixXd motions_held_by_contact(Model& model, const std::function<Eigen::VectorXd()>& scene_force);
+// Those motions on the free DOFs of the turned model (n_free × k; each node's DOF frame and the
+// scene's rotation applied): K's null space, which assemble_qp puts in qp.null_space.
+Eigen::MatrixXd free_modes_on_dofs(const Model& model, const Eigen::MatrixXd& at_nodes);
+
 // ../fe/loads.cpp: consistent nodal forces (dim·n_nodes, global axes, for the body's thickness in 2D)
 // of the force loads of `scene` on `mesh` — both already in the global frame. Point loads act
 // at `point_nodes[l]` for load l (chosen in the scene's own frame, see point_load_nodes).

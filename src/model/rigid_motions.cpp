@@ -136,33 +136,34 @@ std::string describe_3d(const Eigen::MatrixXd& null, const Eigen::Vector3d& cent
   return text;
 }
 
-void check_rigid_motions_2d(const Model& model);
-
-void check_rigid_motions_3d(const Model& model) {
+RigidFreedom rigid_freedom_3d(const Model& model) {
   const Mesh& mesh = model.mesh;
+  RigidFreedom freedom;
   int n_parts = 0;
-  const std::vector<int> part = connected_parts(mesh, n_parts);
-  std::vector<Eigen::Vector3d> centre(n_parts, Eigen::Vector3d::Zero());
-  std::vector<double> volume(n_parts, 0.0), extent(n_parts, 0.0);
-  std::vector<int> first_node(n_parts, -1);
+  freedom.part = connected_parts(mesh, n_parts);
+  const std::vector<int>& part = freedom.part;
+  freedom.parts.assign(n_parts, PartFreedom{});
+  std::vector<double> volume(n_parts, 0.0);
   for (int node = 0; node < mesh.n_nodes(); ++node)
-    if (first_node[part[node]] < 0) first_node[part[node]] = node;
+    if (freedom.parts[part[node]].first_node < 0) freedom.parts[part[node]].first_node = node;
   for (int e = 0; e < mesh.n_elements(); ++e) {
     const int* v = mesh.element(e);
     const double V = std::abs(element_measure(mesh, e));
-    centre[part[v[0]]] += V * (mesh.nodes[v[0]] + mesh.nodes[v[1]] + mesh.nodes[v[2]] + mesh.nodes[v[3]]) / 4.0;
+    freedom.parts[part[v[0]]].centre +=
+        V * (mesh.nodes[v[0]] + mesh.nodes[v[1]] + mesh.nodes[v[2]] + mesh.nodes[v[3]]) / 4.0;
     volume[part[v[0]]] += V;
   }
   for (int p = 0; p < n_parts; ++p)
-    if (volume[p] > 0) centre[p] /= volume[p];
+    if (volume[p] > 0) freedom.parts[p].centre /= volume[p];
+  std::vector<double> extent(n_parts, 0.0);
   for (int node = 0; node < mesh.n_nodes(); ++node)
-    extent[part[node]] = std::max(extent[part[node]], (mesh.nodes[node] - centre[part[node]]).norm());
+    extent[part[node]] = std::max(extent[part[node]], (mesh.nodes[node] - freedom.parts[part[node]].centre).norm());
   using Matrix6d = Eigen::Matrix<double, 6, 6>;
   std::vector<Matrix6d> normal(n_parts, Matrix6d::Zero());
   for (int node = 0; node < mesh.n_nodes(); ++node) {
     const int p = part[node];
     const double l = extent[p] > 0 ? extent[p] : 1.0;
-    const Eigen::Vector3d x = mesh.nodes[node] - centre[p];
+    const Eigen::Vector3d x = mesh.nodes[node] - freedom.parts[p].centre;
     const Eigen::MatrixXd frame = dof_frame(model, node);
     for (int c = 0; c < 3; ++c) {
       if (model.free_index[3 * node + c] >= 0) continue;
@@ -173,40 +174,88 @@ void check_rigid_motions_3d(const Model& model) {
     }
   }
   for (int p = 0; p < n_parts; ++p) {
+    freedom.parts[p].extent = extent[p] > 0 ? extent[p] : 1.0;
     const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(normal[p]);
     const Eigen::Matrix<double, 6, 1> values = eigen.eigenvalues();  // ascending
     int k = 0;
     while (k < 6 && !(values[k] > kNullTolerance * values[5])) ++k;
-    if (k == 0) continue;
-    const double l = extent[p] > 0 ? extent[p] : 1.0;
-    const std::string which = n_parts == 1 ? "the body"
-                                           : "the part of the body with node " + std::to_string(first_node[p]) +
-                                                 " at " + format_point(mesh.nodes[first_node[p]], 3);
-    throw InputError(
-        "load",
-        "leaves " + which + " free to move rigidly (" + describe_3d(eigen.eigenvectors().leftCols(k), centre[p], l) +
-            "): no prescribed displacement stops it, so K is singular, and contact alone does not "
-            "hold a body here; prescribe displacements that block " +
-            (k == 6 ? "every motion (e.g. \"value\": [ux, uy, uz] on a face)" : "these motions") +
-            (model.scene.body.symmetry ? "" : ", or model a symmetric body's quarter with \"body.symmetry\": true"));
+    freedom.parts[p].null = eigen.eigenvectors().leftCols(k);
   }
+  return freedom;
 }
+
+RigidFreedom rigid_freedom_2d(const Model& model);
 
 }  // namespace
 
+// Today's refusal of part p, free to move along the motions `null` (columns of rigid coordinates).
+[[noreturn]] void refuse_free_part(const Model& model, const RigidFreedom& freedom, int p, const Eigen::MatrixXd& null,
+                                   const std::string& why) {
+  const Mesh& mesh = model.mesh;
+  const PartFreedom& part = freedom.parts[p];
+  const int k = static_cast<int>(null.cols());
+  const bool one = freedom.parts.size() == 1;
+  if (model.dim == 3) {
+    const std::string which = one ? "the body"
+                                  : "the part of the body with node " + std::to_string(part.first_node) + " at " +
+                                        format_point(mesh.nodes[part.first_node], 3);
+    throw InputError(
+        "load",
+        "leaves " + which + " free to move rigidly (" + describe_3d(null, part.centre, part.extent) + "): " + why +
+            "; prescribe displacements that block " +
+            (k == 6 ? "every motion (e.g. \"value\": [ux, uy, uz] on a face)" : "these motions") +
+            (model.scene.body.symmetry ? "" : ", or model a symmetric body's quarter with \"body.symmetry\": true"));
+  }
+  const FreeMotions free = describe(null, part.centre.head<2>(), part.extent);
+  const std::string which = one ? "the body"
+                                : "the part of the body with node " + std::to_string(part.first_node) + " at (" +
+                                      cleaned_number(mesh.nodes[part.first_node].x(), part.extent) + ", " +
+                                      cleaned_number(mesh.nodes[part.first_node].y(), part.extent) + ")";
+  throw InputError("load", "leaves " + which + " free to move rigidly (" + free.what + "): " + why + "; " + free.fix);
+}
+
+Eigen::Vector3d rigid_motion_at(const PartFreedom& part, const Eigen::VectorXd& rigid, const Eigen::Vector3d& x,
+                                int dim) {
+  const Eigen::Vector3d r = (x - part.centre) / part.extent;
+  if (dim == 3) return rigid.head<3>() + Eigen::Vector3d(rigid.tail<3>()).cross(r);
+  return Eigen::Vector3d(rigid[0] - rigid[2] * r.y(), rigid[1] + rigid[2] * r.x(), 0.0);
+}
+
+std::string describe_motion(const Model& model, const PartFreedom& part, const Eigen::VectorXd& rigid) {
+  const double rotation = model.dim == 3 ? rigid.tail<3>().norm() : std::abs(rigid[2]);
+  const Eigen::Vector3d t = model.dim == 3 ? Eigen::Vector3d(rigid.head<3>()) : Eigen::Vector3d(rigid[0], rigid[1], 0);
+  if (rotation <= 1e-9 * t.norm()) {
+    // A translation: its signed direction, "+z" along an axis.
+    const Eigen::Vector3d unit = t.normalized();
+    for (int c = 0; c < model.dim; ++c)
+      if (std::abs(std::abs(unit[c]) - 1) < 1e-9) return std::string("along ") + (unit[c] > 0 ? "+" : "-") + "xyz"[c];
+    return "along (" + cleaned_number(unit.x(), 1) + ", " + cleaned_number(unit.y(), 1) +
+           (model.dim == 3 ? ", " + cleaned_number(unit.z(), 1) : std::string()) + ")";
+  }
+  if (model.dim == 3) return "by " + describe_3d(rigid, part.centre, part.extent);
+  return "by " + describe(rigid, part.centre.head<2>(), part.extent).what +
+         (rigid[2] > 0 ? ", anticlockwise" : ", clockwise");
+}
+
+RigidFreedom rigid_freedom(const Model& model) {
+  return model.dim == 3 ? rigid_freedom_3d(model) : rigid_freedom_2d(model);
+}
+
 void check_rigid_motions(const Model& model) {
-  if (model.dim == 3)
-    check_rigid_motions_3d(model);
-  else
-    check_rigid_motions_2d(model);
+  const RigidFreedom freedom = rigid_freedom(model);
+  for (size_t p = 0; p < freedom.parts.size(); ++p)
+    if (freedom.parts[p].null.cols() > 0)
+      refuse_free_part(model, freedom, static_cast<int>(p), freedom.parts[p].null, kNothingHolds);
 }
 
 namespace {
 
-void check_rigid_motions_2d(const Model& model) {
+RigidFreedom rigid_freedom_2d(const Model& model) {
   const Mesh& mesh = model.mesh;
+  RigidFreedom freedom;
   int n_parts = 0;
-  const std::vector<int> part = connected_parts(mesh, n_parts);
+  freedom.part = connected_parts(mesh, n_parts);
+  const std::vector<int>& part = freedom.part;
   // Each part's area centroid (exact for a symmetric body, whatever its mesh) and extent.
   std::vector<Eigen::Vector2d> centre(n_parts, Eigen::Vector2d::Zero());
   std::vector<double> area(n_parts, 0.0);
@@ -239,23 +288,19 @@ void check_rigid_motions_2d(const Model& model) {
       normal[p] += row * row.transpose();
     }
   }
+  freedom.parts.assign(n_parts, PartFreedom{});
   for (int p = 0; p < n_parts; ++p) {
+    PartFreedom& out = freedom.parts[p];
+    out.first_node = first_node[p];
+    out.centre = Eigen::Vector3d(centre[p].x(), centre[p].y(), 0.0);
+    out.extent = extent[p] > 0 ? extent[p] : 1.0;
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(normal[p]);
     const Eigen::Vector3d values = eigen.eigenvalues();  // ascending
-    const double largest = values[2];
     int k = 0;
-    while (k < 3 && !(values[k] > kNullTolerance * largest)) ++k;
-    if (k == 0) continue;
-    const FreeMotions free = describe(eigen.eigenvectors().leftCols(k), centre[p], extent[p] > 0 ? extent[p] : 1.0);
-    const std::string which = n_parts == 1 ? "the body"
-                                           : "the part of the body with node " + std::to_string(first_node[p]) +
-                                                 " at (" + cleaned_number(mesh.nodes[first_node[p]].x(), extent[p]) +
-                                                 ", " + cleaned_number(mesh.nodes[first_node[p]].y(), extent[p]) + ")";
-    throw InputError("load", "leaves " + which + " free to move rigidly (" + free.what +
-                                 "): no prescribed displacement stops it, so K is singular, and contact alone does not "
-                                 "hold a body here; " +
-                                 free.fix);
+    while (k < 3 && !(values[k] > kNullTolerance * values[2])) ++k;
+    out.null = eigen.eigenvectors().leftCols(k);
   }
+  return freedom;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include "contactqp/errors.hpp"
 #include "qp/friction_sets.hpp"
+#include "qp/no_solution.hpp"
 
 namespace contactqp {
 namespace {
@@ -16,6 +17,24 @@ bool all_finite(const SparseMatrix& A) {
 }
 
 std::string shape(const SparseMatrix& A) { return std::to_string(A.rows()) + " × " + std::to_string(A.cols()); }
+
+// Each column r of the null space must satisfy K r ≈ 0: ‖K r‖∞ at most 1e-8 ‖K‖∞ ‖r‖∞ (a rigid
+// mode computed from coordinates carries their round-off, far below that), else the caller
+// passed modes of another K and the solve would be silently wrong.
+void validate_null_space(const QuadraticProgram& qp) {
+  if (qp.null_space.cols() == 0) return;
+  const double stiffness = detail::infinity_norm(qp.K);
+  for (long j = 0; j < qp.null_space.cols(); ++j) {
+    const Eigen::VectorXd r = qp.null_space.col(j);
+    const double size = r.cwiseAbs().maxCoeff();
+    if (size == 0) throw InputError("qp.null_space", "column " + std::to_string(j) + " is zero");
+    const double residual = (qp.K * r).cwiseAbs().maxCoeff();
+    if (residual > 1e-8 * stiffness * size)
+      throw InputError("qp.null_space", "column " + std::to_string(j) +
+                                            " is not in K's null space: |K r| = " + detail::format_value(residual) +
+                                            " against |K| |r| = " + detail::format_value(stiffness * size));
+  }
+}
 
 }  // namespace
 
@@ -92,6 +111,10 @@ void validate(const QuadraticProgram& qp) {
     throw InputError("qp.near_null_space", "has " + std::to_string(qp.near_null_space.rows()) + " rows, K has " +
                                                std::to_string(n) + " rows");
   if (!qp.near_null_space.allFinite()) throw InputError("qp.near_null_space", "has an entry that is not finite");
+  if (qp.null_space.size() > 0 && qp.null_space.rows() != n)
+    throw InputError("qp.null_space",
+                     "has " + std::to_string(qp.null_space.rows()) + " rows, K has " + std::to_string(n) + " rows");
+  if (!qp.null_space.allFinite()) throw InputError("qp.null_space", "has an entry that is not finite");
   const CoarseSpace& coarse = qp.coarse_space;
   if (!coarse.empty() && (coarse.interpolation.rows() != n ||
                           coarse.column_vertex.size() != static_cast<std::size_t>(coarse.interpolation.cols()) ||
@@ -104,6 +127,7 @@ void validate(const QuadraticProgram& qp) {
   if (!qp.f.allFinite()) throw InputError("qp.f", "has an entry that is not finite");
   if (!qp.g.allFinite()) throw InputError("qp.g", "has an entry that is not finite");
   detail::validate_friction(qp);
+  validate_null_space(qp);
 }
 
 }  // namespace contactqp

@@ -43,6 +43,10 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
 
   phase("mesh");
   auto model = std::make_shared<Model>(build_model(scene, options.build));
+  if (options.no_contact && model->free_modes.cols() > 0)
+    throw InputError("--no-contact", "the body is held only by its contacts (it moves freely " +
+                                         describe_free_motion(*model, model->free_modes.col(0)) +
+                                         " without them): without contact K is singular and nothing holds the load");
   phase("assemble");
   // On several processes a backend that solves a problem held in parts takes it so (the petsc
   // backend under mpirun, docs/petsc.md): no process then holds the whole K. Every other solve
@@ -72,6 +76,16 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
     report.result = solve(*qp, scene.solver);
   else
     report.result = solve_load_steps(*model, *whole, scene, report.options, &report.steps);
+
+  // A body only its contacts hold, which the load pulls away from them: name the motion.
+  if (report.result.status == Status::Unbounded && report.result.recession.size() == model->n_free &&
+      model->free_modes.cols() > 0) {
+    const std::string prefix = "unbounded: ";
+    const std::string& said = report.result.message;
+    const std::string why = said.compare(0, prefix.size(), prefix) == 0 ? said.substr(prefix.size()) : said;
+    report.result.message = prefix + "the body moves freely " + describe_free_motion(*model, report.result.recession) +
+                            ": the load pushes it away from every contact (" + why + ")";
+  }
 
   phase("certify");
   Stopwatch clock;

@@ -16,22 +16,6 @@ using namespace contactqp::testing;
 
 namespace {
 
-// The stiffness of a chain of masses joined by springs k[i] between masses i and i+1, with
-// mass 0 grounded by a spring `ground` (0: the chain floats, K singular with the translation
-// (1, ..., 1) in its kernel).
-Eigen::MatrixXd spring_chain(const std::vector<double>& k, double ground = 0) {
-  const int n = static_cast<int>(k.size()) + 1;
-  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
-  for (int i = 0; i + 1 < n; ++i) {
-    K(i, i) += k[i];
-    K(i + 1, i + 1) += k[i];
-    K(i, i + 1) -= k[i];
-    K(i + 1, i) -= k[i];
-  }
-  K(0, 0) += ground;
-  return K;
-}
-
 // A wall to the right of mass j at `gap` (u_j ≤ gap) or to its left (−u_j ≤ gap).
 Eigen::RowVectorXd wall_row(int n, int j, double side) {
   Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
@@ -56,14 +40,14 @@ std::vector<StatusCase> status_battery() {
     B << wall_row(3, 0, -1), wall_row(3, 2, 1);
     const Eigen::Vector3d f(1, 0, 0);
     cases.push_back({"floating chain pushed against a wall",
-                     make_qp(spring_chain({1, 2}), f, B, Eigen::Vector2d(2, 0.5)), Status::Converged,
+                     make_qp(chain_of_springs({1, 2}), f, B, Eigen::Vector2d(2, 0.5)), Status::Converged,
                      Eigen::Vector3d(2, 1, 0.5), Eigen::Vector2d(0, 1)});
   }
   {
     // The same chain pulled left, with only the right wall: nothing stops it.
     Eigen::MatrixXd B = wall_row(3, 2, 1);
     cases.push_back({"floating chain pulled away from its wall",
-                     make_qp(spring_chain({1, 2}), Eigen::Vector3d(-1, 0, 0), B, Eigen::VectorXd::Constant(1, 0.5)),
+                     make_qp(chain_of_springs({1, 2}), Eigen::Vector3d(-1, 0, 0), B, Eigen::VectorXd::Constant(1, 0.5)),
                      Status::Unbounded,
                      {},
                      {}});
@@ -76,7 +60,7 @@ std::vector<StatusCase> status_battery() {
     B << wall_row(3, 0, -1), wall_row(3, 2, 1);
     const double tension = 0.5 / 1.5;
     cases.push_back({"floating chain pulled apart against two walls",
-                     make_qp(spring_chain({1, 2}), Eigen::Vector3d(-1, 0, 1), B, Eigen::Vector2d(0.25, 0.25)),
+                     make_qp(chain_of_springs({1, 2}), Eigen::Vector3d(-1, 0, 1), B, Eigen::Vector2d(0.25, 0.25)),
                      Status::Converged, Eigen::Vector3d(-0.25, -0.25 + tension / 1, 0.25),
                      Eigen::Vector2d(1 - tension, 1 - tension)});
   }
@@ -103,7 +87,7 @@ std::vector<StatusCase> status_battery() {
     Eigen::MatrixXd B(2, 2);
     B << 1, 0, -1, 0;
     cases.push_back({"contradictory rows",
-                     make_qp(spring_chain({1}, 1), Eigen::Vector2d(0.3, 0), B, Eigen::Vector2d(-1, -1)),
+                     make_qp(chain_of_springs({1}, 1), Eigen::Vector2d(0.3, 0), B, Eigen::Vector2d(-1, -1)),
                      Status::Infeasible,
                      {},
                      {}});
@@ -111,7 +95,7 @@ std::vector<StatusCase> status_battery() {
   {
     // Stiffness contrast 1e4, grounded at mass 0 by 1, pushed at mass 2 by 1e4 toward a wall 0.5
     // away: the free answer (1e4 + 1 + 1e-4 ...) passes the wall, which carries the rest.
-    const Eigen::MatrixXd K = spring_chain({1e4, 1}, 1);
+    const Eigen::MatrixXd K = chain_of_springs({1e4, 1}, 1);
     Eigen::MatrixXd B = wall_row(3, 2, 1);
     const Eigen::Vector3d f(0, 0, 1e4);
     // At the wall u2 = 0.5: masses 0 and 1 are a grounded spring 1 in series with 1e4.
@@ -129,7 +113,7 @@ std::vector<StatusCase> status_battery() {
     Eigen::MatrixXd B = wall_row(3, 2, 1);
     cases.push_back(
         {"chain grounded by 1e-12, pulled away",
-         make_qp(spring_chain({1, 1}, 1e-12), Eigen::Vector3d(-1, 0, 0), B, Eigen::VectorXd::Constant(1, 0.5)),
+         make_qp(chain_of_springs({1, 1}, 1e-12), Eigen::Vector3d(-1, 0, 0), B, Eigen::VectorXd::Constant(1, 0.5)),
          Status::Unbounded,
          {},
          {}});

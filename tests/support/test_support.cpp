@@ -27,6 +27,19 @@ QuadraticProgram make_qp(const Eigen::MatrixXd& K, const Eigen::VectorXd& f, con
   return qp;
 }
 
+Eigen::MatrixXd chain_of_springs(const std::vector<double>& k, double ground) {
+  const int n = static_cast<int>(k.size()) + 1;
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i + 1 < n; ++i) {
+    K(i, i) += k[i];
+    K(i + 1, i + 1) += k[i];
+    K(i, i + 1) -= k[i];
+    K(i + 1, i) -= k[i];
+  }
+  K(0, 0) += ground;
+  return K;
+}
+
 QuadraticProgram spring_against_wall(double k, double F, double gap) {
   return make_qp(Eigen::MatrixXd::Constant(1, 1, k), Eigen::VectorXd::Constant(1, F),
                  Eigen::MatrixXd::Constant(1, 1, 1.0), Eigen::VectorXd::Constant(1, gap));

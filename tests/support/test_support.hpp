@@ -17,6 +17,11 @@ namespace contactqp::testing {
 QuadraticProgram make_qp(const Eigen::MatrixXd& K, const Eigen::VectorXd& f, const Eigen::MatrixXd& B,
                          const Eigen::VectorXd& g);
 
+// The stiffness of masses 0..n−1 on a line joined by springs k[i] (mass i to i+1), mass 0
+// grounded by a spring `ground` (0: the chain floats, K singular with the translation
+// (1, ..., 1) in its kernel).
+Eigen::MatrixXd chain_of_springs(const std::vector<double>& k, double ground = 0);
+
 // One spring of stiffness k pulled by F towards a wall at distance `gap`:
 // u = min(F/k, gap), λ = max(0, F − k·gap) — the wall pushes back, so λ ≥ 0 is compression.
 QuadraticProgram spring_against_wall(double k, double F, double gap);

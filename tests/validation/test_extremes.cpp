@@ -356,20 +356,25 @@ TEST_CASE("a body nothing holds is bad input naming the free motion and the fix"
     const char* patch;
     std::vector<std::string> names;
   };
+  // A free motion is bad input when the load drives it and no contact candidate could ever stop
+  // it (one the rows see, or the load does not drive, is solved: test_held_by_contact.cpp).
+  const char* sideways = R"({"body": {"symmetry": false}, "load": [{"type": "displacement", "boundary": "top",
+      "value": [null, -0.016]}, {"type": "traction", "boundary": "top", "value": [0.01, 0]}]})";
   const Case cases[] = {
-      // Hertz's whole disc pushed down with u_x left free: it can slide sideways.
-      {"scenes/hertz.json",
-       R"({"body": {"symmetry": false}})",
-       {"load", "translation in x", "prescribe u_x", "body.symmetry"}},
+      // Hertz's whole disc pushed down with u_x left free and pulled sideways: it slides along the plane.
+      {"scenes/hertz.json", sideways, {"load", "translation in x", "prescribe u_x", "body.symmetry"}},
       // The same turned by 30°: the free motion is named in the scene's own axes.
-      {"scenes/hertz-rotated.json", R"({"body": {"symmetry": false}})", {"translation in x"}},
-      // A block loaded by a traction only: free in every rigid motion.
+      {"scenes/hertz-rotated.json", sideways, {"translation in x"}},
+      // A block loaded by a traction only, its circle too far below for any candidate: free in every rigid motion.
       {"scenes/block-on-circle.json",
-       R"({"body": {"symmetry": false}, "load": {"type": "traction", "value": [0, -0.01]}})",
+       R"({"body": {"symmetry": false}, "load": {"type": "traction", "value": [0, -0.01]},
+           "obstacle": {"center": [0, -2]}, "contact": {"max_gap": 0.5}})",
        {"translations in x and y and rotation", "prescribes both components"}},
-      // u_x held along the top only: the block can still drop, or turn about the top's middle.
+      // u_x held along the top only, pushed down there: the block can still drop, or turn about the top's middle.
       {"scenes/block-on-circle.json",
-       R"({"body": {"symmetry": false}, "load": {"value": [0, null]}})",
+       R"({"body": {"symmetry": false}, "load": [{"type": "displacement", "boundary": "top", "value": [0, null]},
+           {"type": "traction", "boundary": "top", "value": [0, -0.01]}],
+           "obstacle": {"center": [0, -2]}, "contact": {"max_gap": 0.5}})",
        {"translation in y and rotation about (0, 2)"}},
   };
   for (const Case& c : cases) {
@@ -396,8 +401,11 @@ TEST_CASE("each disconnected part of a mesh must be held", "[input][extremes][gm
                         "$EndPhysicalNames\n$Nodes\n8\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n5 2 0 0\n6 3 0 0\n7 3 1 0\n"
                         "8 2 1 0\n$EndNodes\n$Elements\n5\n1 1 2 1 1 1 2\n2 2 2 2 1 1 2 3\n3 2 2 2 1 1 3 4\n"
                         "4 2 2 2 1 5 6 7\n5 2 2 2 1 5 7 8\n$EndElements\n";
+  // Gravity along x drives the right square, which no candidate row (the contact boundary is the
+  // left square's bottom) can stop.
   const std::string scene = R"({"material": {"E": 1, "nu": 0.3}, "body": {"shape": "mesh", "file": "two.msh"},
-      "load": {"type": "displacement", "boundary": "bottom", "value": [0, 0]},
+      "load": [{"type": "displacement", "boundary": "bottom", "value": [0, 0]},
+               {"type": "gravity", "density": 1, "g": [1, 0]}],
       "obstacle": {"type": "plane", "point": [0, 2], "normal": [0, -1]}, "contact": {"boundary": "bottom"}})";
   CHECK_THROWS_WITH(build_model(parse_scene(scene, directory.path("scene.json"))),
                     Catch::Matchers::Contains("the part of the body with node") &&
@@ -407,7 +415,10 @@ TEST_CASE("each disconnected part of a mesh must be held", "[input][extremes][gm
 TEST_CASE("the CLI refuses a free body with exit 2 and one line, before any factorisation", "[input][cli][extremes]") {
   TemporaryDirectory directory;
   const std::string scene = directory.path("free.json");
-  std::ofstream(scene) << patched_scene("scenes/hertz.json", R"({"body": {"symmetry": false}})");
+  // The whole disc with a sideways traction that no row against the plane below can stop.
+  std::ofstream(scene) << patched_scene(
+      "scenes/hertz.json", R"({"body": {"symmetry": false}, "load": [{"type": "displacement", "boundary": "top",
+                               "value": [null, -0.016]}, {"type": "traction", "boundary": "top", "value": [0.01, 0]}]})");
   for (Backend backend : available_backends()) {
     const std::string name = to_string(backend);
     CAPTURE(name);

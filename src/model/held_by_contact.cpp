@@ -1,0 +1,141 @@
+// A one-body model whose prescribed DOFs leave rigid motions free: allowed when its contact
+// candidates can hold them (docs/extremes.md, "Bodies held only by their contacts").
+//
+// For each connected part with free motions m_1..m_k (rigid_motions.cpp), candidate row r sees
+// motion j by G_rj = −n_rᵀ m_j(x_r) (n_r the obstacle normal at its node) and the load drives it
+// by F_j = Σ_i f_iᵀ m_j(x_i). A combination that no row sees (G z = 0) can never be stopped:
+// if the load drives it (Fᵀz ≠ 0) the scene is refused before any work, with the line
+// check_rigid_motions gives; if not (a frictionless ball's sideways translation) it stays a free
+// mode, which solve() fixes by its stated choice. Every free motion becomes a column of K's null
+// space; whether the contacts do hold the load (or it pulls the body away, and the solve ends
+// unbounded) is the solve's to say.
+#include <Eigen/SVD>
+#include <cmath>
+
+#include "contact/contact.hpp"
+#include "model_parts.hpp"
+
+namespace contactqp::detail {
+namespace {
+
+// The rows of z with G z = 0: an orthonormal basis of G's null space (k × z).
+Eigen::MatrixXd unseen_combinations(const Eigen::MatrixXd& G, int k) {
+  if (G.rows() == 0) return Eigen::MatrixXd::Identity(k, k);
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(G, Eigen::ComputeFullV);
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  // Rows of unit normals against motions of unit size at most: σ of order √rows; round-off is 1e-12 of it.
+  const double largest = sigma.size() ? sigma[0] : 0.0;
+  long rank = 0;
+  for (long j = 0; j < sigma.size(); ++j)
+    if (sigma[j] > 1e-10 * std::max(1.0, largest)) ++rank;
+  return svd.matrixV().rightCols(k - rank);
+}
+
+}  // namespace
+
+Eigen::MatrixXd motions_held_by_contact(Model& model, const std::function<Eigen::VectorXd()>& scene_force) {
+  const RigidFreedom freedom = rigid_freedom(model);
+  const int dim = model.dim, n_nodes = model.mesh.n_nodes();
+  model.free_motions.clear();
+  std::vector<Eigen::VectorXd> columns;
+  Eigen::VectorXd force;
+  for (size_t p = 0; p < freedom.parts.size(); ++p) {
+    const PartFreedom& part = freedom.parts[p];
+    const int k = static_cast<int>(part.null.cols());
+    if (k == 0) continue;
+    if (force.size() == 0) force = scene_force();
+    auto motion = [&](int j, int node) { return rigid_motion_at(part, part.null.col(j), model.mesh.nodes[node], dim); };
+
+    std::vector<Eigen::RowVectorXd> rows;
+    for (const Candidate& candidate : model.candidates) {
+      if (candidate.obstacle < 0 || freedom.part[candidate.node] != static_cast<int>(p)) continue;
+      const Eigen::Vector3d n =
+          project(model.scene.obstacles[candidate.obstacle], model.mesh.nodes[candidate.node]).normal;
+      Eigen::RowVectorXd row(k);
+      for (int j = 0; j < k; ++j) row[j] = -n.dot(motion(j, candidate.node));
+      rows.push_back(row);
+    }
+    Eigen::MatrixXd G(static_cast<long>(rows.size()), k);
+    for (size_t r = 0; r < rows.size(); ++r) G.row(static_cast<long>(r)) = rows[r];
+
+    Eigen::VectorXd F = Eigen::VectorXd::Zero(k);
+    double total = 0;  // Σ |f_i|: the size the drive is measured against
+    for (int node = 0; node < n_nodes; ++node) {
+      if (freedom.part[node] != static_cast<int>(p)) continue;
+      Eigen::Vector3d f = Eigen::Vector3d::Zero();
+      f.head(dim) = force.segment(dim * node, dim);
+      total += f.norm();
+      for (int j = 0; j < k; ++j) F[j] += f.dot(motion(j, node));
+    }
+    const Eigen::MatrixXd unseen = unseen_combinations(G, k);
+    if (unseen.cols() > 0 && total > 0) {
+      const Eigen::VectorXd drive = unseen.transpose() * F;
+      if (drive.norm() > 1e-9 * total)
+        refuse_free_part(model, freedom, static_cast<int>(p), part.null * unseen, kNothingHolds);
+    }
+
+    for (int j = 0; j < k; ++j) {
+      FreeMotion free;
+      free.rigid = part.null.col(j);
+      free.centre = part.centre;
+      free.extent = part.extent;
+      free.part = static_cast<int>(p);
+      model.free_motions.push_back(free);
+      Eigen::VectorXd column = Eigen::VectorXd::Zero(dim * n_nodes);
+      for (int node = 0; node < n_nodes; ++node)
+        if (freedom.part[node] == static_cast<int>(p)) column.segment(dim * node, dim) = motion(j, node).head(dim);
+      columns.push_back(column);
+    }
+  }
+  Eigen::MatrixXd at_nodes(dim * n_nodes, static_cast<long>(columns.size()));
+  for (size_t j = 0; j < columns.size(); ++j) at_nodes.col(static_cast<long>(j)) = columns[j];
+  return at_nodes;
+}
+
+Eigen::MatrixXd free_modes_on_dofs(const Model& model, const Eigen::MatrixXd& at_nodes) {
+  const int dim = model.dim;
+  const Eigen::MatrixXd Q = model.rotation.topLeftCorner(dim, dim);
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(model.n_free, at_nodes.cols());
+  for (int node = 0; node < model.mesh.n_nodes(); ++node) {
+    const Eigen::MatrixXd frame = dof_frame(model, node);
+    for (long j = 0; j < at_nodes.cols(); ++j) {
+      const Eigen::VectorXd global = Q * at_nodes.block(dim * node, j, dim, 1);
+      for (int c = 0; c < dim; ++c) {
+        const int column = model.free_index[dim * node + c];
+        if (column >= 0) R(column, j) = frame.col(c).dot(global);
+      }
+    }
+  }
+  return R;
+}
+
+}  // namespace contactqp::detail
+
+namespace contactqp {
+
+std::string describe_free_motion(const Model& model, const Eigen::VectorXd& d) {
+  const Eigen::MatrixXd& R = model.free_modes;
+  if (R.cols() == 0 || d.size() != R.rows()) return "";
+  // d = R c: the coefficients of the free motions, then the motion of each part they move.
+  const Eigen::VectorXd c = R.colPivHouseholderQr().solve(d);
+  std::string text;
+  std::vector<char> done(model.free_motions.size(), 0);
+  for (size_t j = 0; j < model.free_motions.size(); ++j) {
+    if (done[j]) continue;
+    const FreeMotion& first = model.free_motions[j];
+    Eigen::VectorXd rigid = Eigen::VectorXd::Zero(first.rigid.size());
+    for (size_t i = j; i < model.free_motions.size(); ++i)
+      if (model.free_motions[i].part == first.part) {
+        rigid += c[static_cast<long>(i)] * model.free_motions[i].rigid;
+        done[i] = 1;
+      }
+    if (rigid.norm() <= 1e-9 * c.norm()) continue;
+    detail::PartFreedom part;
+    part.centre = first.centre;
+    part.extent = first.extent;
+    text += (text.empty() ? "" : ", ") + detail::describe_motion(model, part, rigid);
+  }
+  return text;
+}
+
+}  // namespace contactqp
