@@ -69,7 +69,8 @@ TEST_CASE("a half cylinder pressed by a pressure alone: the plane carries the lo
   CHECK(pressed.contact.max_pressure == Approx(pushed.contact.max_pressure).epsilon(0.01));
 }
 
-TEST_CASE("every backend solves the half cylinder held by the plane alike", "[validation][held_by_contact][cross_backend]") {
+TEST_CASE("every backend solves the half cylinder held by the plane alike",
+          "[validation][held_by_contact][cross_backend]") {
   // A coarser mesh keeps the dual backends quick.
   const std::string coarse = R"({"body": {"mesh": {"size": 0.2, "contact_size": 0.01}}})";
   const PressedRun reference = press(coarse, Backend::ActiveSet);
@@ -104,7 +105,8 @@ TEST_CASE("a half cylinder pulled off the plane is unbounded, and the run names 
 TEST_CASE("the whole half disc pushed down is solved with its sideways translation free and undriven",
           "[validation][held_by_contact]") {
   // No symmetry plane: u_x is prescribed nowhere, and neither the push nor the plane acts along x.
-  const SceneRun run = solve_scene("scenes/hertz.json", R"({"body": {"symmetry": false}, "solver": {"backend": "active_set"}})");
+  const SceneRun run =
+      solve_scene("scenes/hertz.json", R"({"body": {"symmetry": false}, "solver": {"backend": "active_set"}})");
   INFO(run.result.message);
   REQUIRE(run.result.status == Status::Converged);
   CHECK(run.result.null_space_dimension == 1);
