@@ -63,8 +63,8 @@ class GeneralisedInverse : public LinearSolver {
   }
   LinearSolverStatistics statistics() const override {
     LinearSolverStatistics s = reduced_ ? reduced_->statistics() : LinearSolverStatistics{};
-    s.method = "generalised inverse (K without its " + std::to_string(keep_.rows() - keep_.cols()) +
-               " fixing DOFs)" + (s.method.empty() ? "" : ": " + s.method);
+    s.method = "generalised inverse (K without its " + std::to_string(keep_.rows() - keep_.cols()) + " fixing DOFs)" +
+               (s.method.empty() ? "" : ": " + s.method);
     return s;
   }
   std::string ordering_name() const override { return reduced_ ? reduced_->ordering_name() : "none"; }

@@ -19,10 +19,10 @@ namespace {
 
 struct FreeModeCase {
   const char* name;
-  QuadraticProgram qp;      // without its null space
-  Eigen::MatrixXd modes;    // K's null space, by hand
-  Eigen::VectorXd u, lam;   // the answer (u with the smallest norm along the undriven modes)
-  Eigen::VectorXd start;    // a starting u, or empty
+  QuadraticProgram qp;     // without its null space
+  Eigen::MatrixXd modes;   // K's null space, by hand
+  Eigen::VectorXd u, lam;  // the answer (u with the smallest norm along the undriven modes)
+  Eigen::VectorXd start;   // a starting u, or empty
 };
 
 std::vector<FreeModeCase> free_mode_cases() {
@@ -35,9 +35,12 @@ std::vector<FreeModeCase> free_mode_cases() {
     Eigen::MatrixXd B = Eigen::MatrixXd::Zero(2, 3);
     B(0, 0) = -1;
     B(1, 2) = 1;
-    cases.push_back({"free chain pushed against a wall", make_qp(chain, Eigen::Vector3d(1, 0, 0), B,
-                                                                 Eigen::Vector2d(2, 0.5)),
-                     translation, Eigen::Vector3d(2, 1, 0.5), Eigen::Vector2d(0, 1), {}});
+    cases.push_back({"free chain pushed against a wall",
+                     make_qp(chain, Eigen::Vector3d(1, 0, 0), B, Eigen::Vector2d(2, 0.5)),
+                     translation,
+                     Eigen::Vector3d(2, 1, 0.5),
+                     Eigen::Vector2d(0, 1),
+                     {}});
   }
   {
     // Pulled apart by 1 at each end between walls 0.25 beyond them: the chain (springs 1 and 2
@@ -46,15 +49,21 @@ std::vector<FreeModeCase> free_mode_cases() {
     B(0, 0) = -1;
     B(1, 2) = 1;
     cases.push_back({"free chain pulled apart between two walls",
-                     make_qp(chain, Eigen::Vector3d(-1, 0, 1), B, Eigen::Vector2d(0.25, 0.25)), translation,
-                     Eigen::Vector3d(-0.25, -0.25 + 1.0 / 3.0, 0.25), Eigen::Vector2d(2.0 / 3.0, 2.0 / 3.0), {}});
+                     make_qp(chain, Eigen::Vector3d(-1, 0, 1), B, Eigen::Vector2d(0.25, 0.25)),
+                     translation,
+                     Eigen::Vector3d(-0.25, -0.25 + 1.0 / 3.0, 0.25),
+                     Eigen::Vector2d(2.0 / 3.0, 2.0 / 3.0),
+                     {}});
   }
   {
     // K = 0: a point pushed by (−1, −2) into the corner x ≥ 0, y ≥ 0.
     cases.push_back({"free point in a corner",
                      make_qp(Eigen::MatrixXd::Zero(2, 2), Eigen::Vector2d(-1, -2), -Eigen::MatrixXd::Identity(2, 2),
                              Eigen::Vector2d::Zero()),
-                     Eigen::MatrixXd::Identity(2, 2), Eigen::Vector2d::Zero(), Eigen::Vector2d(1, 2), {}});
+                     Eigen::MatrixXd::Identity(2, 2),
+                     Eigen::Vector2d::Zero(),
+                     Eigen::Vector2d(1, 2),
+                     {}});
   }
   {
     // Two masses in the plane (DOFs x0, y0, x1, y1), a spring 1 along x between them, pushed by 1
@@ -70,9 +79,9 @@ std::vector<FreeModeCase> free_mode_cases() {
     modes(0, 0) = modes(2, 0) = 1;
     modes(1, 1) = 1;
     modes(3, 2) = 1;
-    cases.push_back({"two masses free sideways", make_qp(K, Eigen::Vector4d(1, 0, 0, 0), B, Eigen::VectorXd::Constant(1, 0.5)),
-                     modes, Eigen::Vector4d(1.5, 0, 0.5, 0), Eigen::VectorXd::Constant(1, 1.0),
-                     Eigen::Vector4d(0, 3, 0, -2)});
+    cases.push_back({"two masses free sideways",
+                     make_qp(K, Eigen::Vector4d(1, 0, 0, 0), B, Eigen::VectorXd::Constant(1, 0.5)), modes,
+                     Eigen::Vector4d(1.5, 0, 0.5, 0), Eigen::VectorXd::Constant(1, 1.0), Eigen::Vector4d(0, 3, 0, -2)});
   }
   return cases;
 }
@@ -129,8 +138,8 @@ TEST_CASE("bodies held only by their contacts are solved by at least three backe
 
 TEST_CASE("a free chain the load drives away from its only wall is unbounded with the null space given",
           "[free_modes][cross_backend]") {
-  QuadraticProgram qp = make_qp(chain_of_springs({1, 2}), Eigen::Vector3d(-1, 0, 0),
-                                Eigen::RowVector3d(0, 0, 1), Eigen::VectorXd::Constant(1, 0.5));
+  QuadraticProgram qp = make_qp(chain_of_springs({1, 2}), Eigen::Vector3d(-1, 0, 0), Eigen::RowVector3d(0, 0, 1),
+                                Eigen::VectorXd::Constant(1, 0.5));
   qp.null_space = Eigen::VectorXd::Ones(3);
   for (const Backend backend : available_backends(qp)) {
     SolveOptions options;

@@ -69,7 +69,8 @@ TEST_CASE("a half cylinder pressed by a pressure alone: the plane carries the lo
   CHECK(pressed.contact.max_pressure == Approx(pushed.contact.max_pressure).epsilon(0.01));
 }
 
-TEST_CASE("every backend solves the half cylinder held by the plane alike", "[validation][held_by_contact][cross_backend]") {
+TEST_CASE("every backend solves the half cylinder held by the plane alike",
+          "[validation][held_by_contact][cross_backend]") {
   // A coarser mesh keeps the dual backends quick.
   const std::string coarse = R"({"body": {"mesh": {"size": 0.2, "contact_size": 0.01}}})";
   const PressedRun reference = press(coarse, Backend::ActiveSet);
@@ -104,7 +105,8 @@ TEST_CASE("a half cylinder pulled off the plane is unbounded, and the run names 
 TEST_CASE("the whole half disc pushed down is solved with its sideways translation free and undriven",
           "[validation][held_by_contact]") {
   // No symmetry plane: u_x is prescribed nowhere, and neither the push nor the plane acts along x.
-  const SceneRun run = solve_scene("scenes/hertz.json", R"({"body": {"symmetry": false}, "solver": {"backend": "active_set"}})");
+  const SceneRun run =
+      solve_scene("scenes/hertz.json", R"({"body": {"symmetry": false}, "solver": {"backend": "active_set"}})");
   INFO(run.result.message);
   REQUIRE(run.result.status == Status::Converged);
   CHECK(run.result.null_space_dimension == 1);
@@ -143,4 +145,24 @@ TEST_CASE("the CLI ends a body pulled off its only contact with exit 1 and the l
   CHECK(r.out.find("unbounded: the body moves freely along +y") != std::string::npos);
   const nlohmann::json result = nlohmann::json::parse(std::ifstream(directory.path("out.json")));
   CHECK(result["status"] == "unbounded");
+}
+
+TEST_CASE("a cylinder pressed by a pressure onto another: the pair carries the load, Hertz for two cylinders holds",
+          "[validation][held_by_contact][bodies]") {
+  const RunReport pressed = run_scene(load_scene(source_path("scenes/two-cylinders-pressure.json")), RunOptions{});
+  INFO(pressed.result.message);
+  REQUIRE(pressed.result.status == Status::Converged);
+  CHECK(pressed.qp->null_space.cols() == 1);  // the roller's translation along y
+  REQUIRE(pressed.pairs.size() == 1);
+  // The pair carries the roller's load: 2 p R1 for the whole roller, action and reaction.
+  CHECK(pressed.pairs[0].force_on_node_body.y() == Approx(2 * 0.002469495).epsilon(1e-7));
+  REQUIRE(pressed.pairs[0].hertz.has_value());
+  CHECK(std::abs(pressed.pairs[0].hertz->error_half_width) < 0.01);
+  CHECK(std::abs(pressed.pairs[0].hertz->error_max_pressure) < 0.01);
+  // The push of two-cylinders.json gives this force on the same mesh: b and p0 agree to 1%.
+  const RunReport pushed = run_scene(load_scene(source_path("scenes/two-cylinders.json")), RunOptions{});
+  REQUIRE(pushed.pairs.size() == 1);
+  CHECK(pushed.pairs[0].force_on_node_body.y() == Approx(pressed.pairs[0].force_on_node_body.y()).epsilon(1e-6));
+  CHECK(pressed.pairs[0].half_width == Approx(pushed.pairs[0].half_width).epsilon(0.01));
+  CHECK(pressed.pairs[0].max_pressure == Approx(pushed.pairs[0].max_pressure).epsilon(0.01));
 }
