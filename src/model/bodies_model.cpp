@@ -75,8 +75,22 @@ void choose_bodies_max_gap(const Scene& scene, Model& model) {
   for (const SceneBody& body : scene.bodies) {
     const double push = largest_push(body.loads);
     if (push < 0) {
-      model.max_gap = std::numeric_limits<double>::infinity();
-      model.max_gap_rule = "every boundary node facing the other side (the loads include forces)";
+      // Forces give no displacement scale: every facing node, unless every contact names its
+      // max_gap, which then bounds the refined zone of the generated shapes too (as a one-body
+      // scene's contact.max_gap does).
+      double given = 0;
+      bool all_given = !scene.pairs.empty() || !scene.obstacle_contacts.empty();
+      for (const ContactPair& pair : scene.pairs) {
+        all_given = all_given && pair.max_gap.has_value();
+        given = std::max(given, pair.max_gap.value_or(0.0));
+      }
+      for (const ObstacleContactSpec& entry : scene.obstacle_contacts) {
+        all_given = all_given && entry.max_gap.has_value();
+        given = std::max(given, entry.max_gap.value_or(0.0));
+      }
+      model.max_gap = all_given ? given : std::numeric_limits<double>::infinity();
+      model.max_gap_rule = all_given ? "the largest max_gap of the contacts (the loads include forces)"
+                                     : "every boundary node facing the other side (the loads include forces)";
       return;
     }
     sum += push;
@@ -257,9 +271,10 @@ Model build_bodies_model(const Scene& scene, const BuildOptions& options) {
     part.scene = one;
     part.mesh = std::move(mesh);
     part.dim = dim;
+    // Whether the body is held (by its prescribed displacements, or by its contacts) is decided
+    // once every candidate row is known, below.
     for_body(body, [&] {
       apply_displacement_conditions(part, one, Eigen::Matrix3d::Identity());
-      check_rigid_motions(part);
       return 0;
     });
     const std::vector<int> point_nodes = point_load_nodes(one, part.mesh, model.warnings);
@@ -330,6 +345,12 @@ Model build_bodies_model(const Scene& scene, const BuildOptions& options) {
     model.scene.contact.boundary =
         scene.bodies[scene.obstacle_contacts.front().body].name + "." + scene.obstacle_contacts.front().boundary;
   remove_prescribed_candidates(model);
+  // Rigid motions a body's prescribed displacements leave free: held by its contacts (with the
+  // obstacles, or with the other bodies through the pairs' rows), or refused naming the body when
+  // its load drives one that no row sees (docs/extremes.md). Bodies have no transform: the
+  // scene's frame is the global one.
+  const Eigen::MatrixXd free_motions = motions_held_by_contact(model, [&] { return model.nodal_force; });
+  if (free_motions.cols() > 0) model.free_modes = free_modes_on_dofs(model, free_motions);
   // Each load's nodal forces over the whole mesh: zero outside its body's block.
   for (size_t l = 0, b = 0, in_body = 0; l < model.load_shares.size(); ++l, ++in_body) {
     while (in_body >= scene.bodies[b].loads.size()) {

@@ -1,8 +1,9 @@
-// A one-body model whose prescribed DOFs leave rigid motions free: allowed when its contact
-// candidates can hold them (docs/extremes.md, "Bodies held only by their contacts").
+// A model whose prescribed DOFs leave rigid motions free: allowed when its contact candidates
+// can hold them (docs/extremes.md, "Bodies held only by their contacts").
 //
 // For each connected part with free motions m_1..m_k (rigid_motions.cpp), candidate row r sees
-// motion j by G_rj = −n_rᵀ m_j(x_r) (n_r the obstacle normal at its node) and the load drives it
+// motion j by G_rj = −n_rᵀ m_j(x_r) (n_r the obstacle normal at its node; a pair's row
+// −nᵀ(u_i − Σ N_j u_j) sees the part through whichever of its nodes it holds) and the load drives it
 // by F_j = Σ_i f_iᵀ m_j(x_i). A combination that no row sees (G z = 0) can never be stopped:
 // if the load drives it (Fᵀz ≠ 0) the scene is refused before any work, with the line
 // check_rigid_motions gives; if not (a frictionless ball's sideways translation) it stays a free
@@ -46,14 +47,33 @@ Eigen::MatrixXd motions_held_by_contact(Model& model, const std::function<Eigen:
     if (force.size() == 0) force = scene_force();
     auto motion = [&](int j, int node) { return rigid_motion_at(part, part.null.col(j), model.mesh.nodes[node], dim); };
 
+    // How each candidate row sees the motions of this part: an obstacle's row −nᵀu_i, a pair's
+    // −nᵀ(u_i − Σ N_j u_j) (the part may hold the node, the face, or both).
+    const int part_index = static_cast<int>(p);
     std::vector<Eigen::RowVectorXd> rows;
     for (const Candidate& candidate : model.candidates) {
-      if (candidate.obstacle < 0 || freedom.part[candidate.node] != static_cast<int>(p)) continue;
-      const Eigen::Vector3d n =
-          project(model.scene.obstacles[candidate.obstacle], model.mesh.nodes[candidate.node]).normal;
-      Eigen::RowVectorXd row(k);
-      for (int j = 0; j < k; ++j) row[j] = -n.dot(motion(j, candidate.node));
-      rows.push_back(row);
+      Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(k);
+      bool touches = false;
+      if (candidate.pair < 0) {
+        if (freedom.part[candidate.node] != part_index) continue;
+        const Eigen::Vector3d n =
+            project(model.scene.obstacles[candidate.obstacle], model.mesh.nodes[candidate.node]).normal;
+        for (int j = 0; j < k; ++j) row[j] = -n.dot(motion(j, candidate.node));
+        touches = true;
+      } else {
+        const Eigen::Vector3d& n = candidate.normal;
+        if (freedom.part[candidate.node] == part_index) {
+          for (int j = 0; j < k; ++j) row[j] -= n.dot(motion(j, candidate.node));
+          touches = true;
+        }
+        for (int f = 0; f < candidate.n_face_nodes; ++f) {
+          const int node = candidate.face_nodes[static_cast<size_t>(f)];
+          if (freedom.part[node] != part_index) continue;
+          for (int j = 0; j < k; ++j) row[j] += candidate.weights[static_cast<size_t>(f)] * n.dot(motion(j, node));
+          touches = true;
+        }
+      }
+      if (touches) rows.push_back(row);
     }
     Eigen::MatrixXd G(static_cast<long>(rows.size()), k);
     for (size_t r = 0; r < rows.size(); ++r) G.row(static_cast<long>(r)) = rows[r];

@@ -194,24 +194,36 @@ RigidFreedom rigid_freedom_2d(const Model& model);
   const Mesh& mesh = model.mesh;
   const PartFreedom& part = freedom.parts[p];
   const int k = static_cast<int>(null.cols());
-  const bool one = freedom.parts.size() == 1;
+  // "the body" when the part is all of it; with several bodies the field names the body's loads.
+  std::string field = "load";
+  bool one = freedom.parts.size() == 1;
+  bool symmetric = model.scene.body.symmetry;
+  if (!model.bodies.empty()) {
+    const int b = model.body_of_node(part.first_node);
+    const ModelBody& body = model.bodies[static_cast<size_t>(b)];
+    field = "bodies[" + std::to_string(b) + "].load";
+    symmetric = body.scene.body.symmetry;
+    int parts_of_body = 0;
+    for (const PartFreedom& other : freedom.parts)
+      parts_of_body += other.first_node >= body.first_node && other.first_node < body.first_node + body.n_nodes;
+    one = parts_of_body == 1;
+  }
   if (model.dim == 3) {
     const std::string which = one ? "the body"
                                   : "the part of the body with node " + std::to_string(part.first_node) + " at " +
                                         format_point(mesh.nodes[part.first_node], 3);
-    throw InputError(
-        "load",
-        "leaves " + which + " free to move rigidly (" + describe_3d(null, part.centre, part.extent) + "): " + why +
-            "; prescribe displacements that block " +
-            (k == 6 ? "every motion (e.g. \"value\": [ux, uy, uz] on a face)" : "these motions") +
-            (model.scene.body.symmetry ? "" : ", or model a symmetric body's quarter with \"body.symmetry\": true"));
+    throw InputError(field,
+                     "leaves " + which + " free to move rigidly (" + describe_3d(null, part.centre, part.extent) +
+                         "): " + why + "; prescribe displacements that block " +
+                         (k == 6 ? "every motion (e.g. \"value\": [ux, uy, uz] on a face)" : "these motions") +
+                         (symmetric ? "" : ", or model a symmetric body's quarter with \"body.symmetry\": true"));
   }
   const FreeMotions free = describe(null, part.centre.head<2>(), part.extent);
   const std::string which = one ? "the body"
                                 : "the part of the body with node " + std::to_string(part.first_node) + " at (" +
                                       cleaned_number(mesh.nodes[part.first_node].x(), part.extent) + ", " +
                                       cleaned_number(mesh.nodes[part.first_node].y(), part.extent) + ")";
-  throw InputError("load", "leaves " + which + " free to move rigidly (" + free.what + "): " + why + "; " + free.fix);
+  throw InputError(field, "leaves " + which + " free to move rigidly (" + free.what + "): " + why + "; " + free.fix);
 }
 
 Eigen::Vector3d rigid_motion_at(const PartFreedom& part, const Eigen::VectorXd& rigid, const Eigen::Vector3d& x,

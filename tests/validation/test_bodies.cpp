@@ -173,13 +173,19 @@ TEST_CASE("bad two-body input: exit 2, one line naming the field, nothing writte
   const std::string good = read_text(source_path("scenes/two-cylinders.json"));
   struct Bad {
     std::string from, to, names;
+    std::string also_from = "", also_to = "";  // a second replacement, when one is not enough
   };
   const std::vector<Bad> cases = {
       {"\"roller.arc\"", "\"rolle.arc\"", "contact.pair[0]"},   // unknown body
       {"\"base.arc\"", "\"base.surface\"", "contact.pair[1]"},  // unknown boundary
-      // held by nothing: a force on the base and no support; the message names its free motion
+      // held by nothing: a force on the base, no support, and 0.05 below the roller, beyond the
+      // pair's max_gap, so that no row could stop it; the message names the body and its free
+      // motion (one the pair's rows see is held by the contact: test_held_by_contact.cpp)
       {"\"displacement\", \"boundary\": \"top\", \"value\": [null, 0.0]",
-       "\"traction\", \"boundary\": \"top\", \"value\": [0.0, 0.001]", "translation in y"},
+       "\"traction\", \"boundary\": \"top\", \"value\": [0.0, 0.001]",
+       "bodies[1].load leaves the body free to move "
+       "rigidly (translation in y)",
+       "\"mirror\": true", "\"mirror\": true, \"offset\": [0.0, -0.05]"},
       {"\"mirror\": true", "\"mirror\": true, \"offset\": [0.0, 0.05]", "contact"},  // overlapping
   };
   for (const Bad& bad : cases) {
@@ -187,6 +193,13 @@ TEST_CASE("bad two-body input: exit 2, one line naming the field, nothing writte
     std::string text = good;
     REQUIRE(text.find(bad.from) != std::string::npos);
     text.replace(text.find(bad.from), bad.from.size(), bad.to);
+    if (!bad.also_from.empty()) {
+      REQUIRE(text.find(bad.also_from) != std::string::npos);
+      text.replace(text.find(bad.also_from), bad.also_from.size(), bad.also_to);
+      const std::string pair = "\"pair\": [\"roller.arc\", \"base.arc\"]";
+      REQUIRE(text.find(pair) != std::string::npos);
+      text.replace(text.find(pair), pair.size(), pair + ", \"max_gap\": 0.01");
+    }
     const std::string scene = directory.path("scene.json");
     {
       std::ofstream file(scene);

@@ -146,3 +146,23 @@ TEST_CASE("the CLI ends a body pulled off its only contact with exit 1 and the l
   const nlohmann::json result = nlohmann::json::parse(std::ifstream(directory.path("out.json")));
   CHECK(result["status"] == "unbounded");
 }
+
+TEST_CASE("a cylinder pressed by a pressure onto another: the pair carries the load, Hertz for two cylinders holds",
+          "[validation][held_by_contact][bodies]") {
+  const RunReport pressed = run_scene(load_scene(source_path("scenes/two-cylinders-pressure.json")), RunOptions{});
+  INFO(pressed.result.message);
+  REQUIRE(pressed.result.status == Status::Converged);
+  CHECK(pressed.qp->null_space.cols() == 1);  // the roller's translation along y
+  REQUIRE(pressed.pairs.size() == 1);
+  // The pair carries the roller's load: 2 p R1 for the whole roller, action and reaction.
+  CHECK(pressed.pairs[0].force_on_node_body.y() == Approx(2 * 0.002469495).epsilon(1e-7));
+  REQUIRE(pressed.pairs[0].hertz.has_value());
+  CHECK(std::abs(pressed.pairs[0].hertz->error_half_width) < 0.01);
+  CHECK(std::abs(pressed.pairs[0].hertz->error_max_pressure) < 0.01);
+  // The push of two-cylinders.json gives this force on the same mesh: b and p0 agree to 1%.
+  const RunReport pushed = run_scene(load_scene(source_path("scenes/two-cylinders.json")), RunOptions{});
+  REQUIRE(pushed.pairs.size() == 1);
+  CHECK(pushed.pairs[0].force_on_node_body.y() == Approx(pressed.pairs[0].force_on_node_body.y()).epsilon(1e-6));
+  CHECK(pressed.pairs[0].half_width == Approx(pushed.pairs[0].half_width).epsilon(0.01));
+  CHECK(pressed.pairs[0].max_pressure == Approx(pushed.pairs[0].max_pressure).epsilon(0.01));
+}
