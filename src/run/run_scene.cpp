@@ -54,6 +54,13 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   const std::shared_ptr<detail::ProblemInParts> in_parts =
       options.no_contact ? nullptr : detail::assemble_in_parts(*model, scene.solver);
   if (in_parts && !scene.steps.empty()) detail::refuse_steps_on_several_processes(scene.solver.backend);
+  // The free modes' proximal steps need K whole (solvers/floating.cpp): not on a problem in parts yet.
+  if (in_parts && model->free_modes.cols() > 0)
+    throw InputError("backend", "= \"" + to_string(scene.solver.backend) +
+                                    "\": a body held only by its contacts (it moves freely " +
+                                    describe_free_motion(*model, model->free_modes.col(0)) +
+                                    " without them) is not solved on several processes by this backend yet: run on "
+                                    "one process, or with another backend");
   // The whole QP, which load steps change step by step (loads, gaps, friction offset).
   const std::shared_ptr<QuadraticProgram> whole =
       in_parts ? nullptr : std::make_shared<QuadraticProgram>(assemble_qp(*model));
