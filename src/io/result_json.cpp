@@ -321,6 +321,21 @@ std::string result_json(const RunReport& report) {
   json solver = {{"tol", number(report.options.tol)}, {"max_iterations", report.options.max_iterations}};
   for (const auto& [name, value] : report.result.diagnostics) solver[name] = number(value);
   out["solver"] = solver;
+  // An unbounded run's evidence (docs/extremes.md, "Problems without a solution"): d on the free
+  // DOFs along which J falls without bound, in words and by the numbers that make it so.
+  const VectorXd& direction = report.result.recession;
+  if (direction.size() > 0 && direction.size() == qp.n_dofs() && qp.K.rows() == qp.n_dofs()) {
+    const VectorXd& d = direction;
+    const VectorXd Bd = qp.B * d;
+    json recession = {{"f_dot_d", number(qp.f.dot(d))},
+                      {"max_B_d", number(Bd.size() ? Bd.maxCoeff() : 0.0)},
+                      {"max_abs_K_d", number(VectorXd(qp.K * d).cwiseAbs().maxCoeff())},
+                      {"meaning", "d (unit 2-norm on the free DOFs) with K d = 0, B d <= 0 and f.d > 0: the "
+                                  "energy falls without bound along u + t d"}};
+    const std::string motion = describe_free_motion(model, d);
+    if (!motion.empty()) recession["motion"] = motion;
+    out["recession"] = recession;
+  }
   // ρ and its limits also at top level, where the ρ studies read them.
   for (const char* key : {"rho", "rho_max", "rho_opt"}) {
     auto it = report.result.diagnostics.find(key);

@@ -145,6 +145,10 @@ TEST_CASE("the CLI ends a body pulled off its only contact with exit 1 and the l
   CHECK(r.out.find("unbounded: the body moves freely along +y") != std::string::npos);
   const nlohmann::json result = nlohmann::json::parse(std::ifstream(directory.path("out.json")));
   CHECK(result["status"] == "unbounded");
+  CHECK(result["recession"]["motion"] == "along +y");
+  CHECK(result["recession"]["f_dot_d"].get<double>() > 0);
+  CHECK(result["recession"]["max_B_d"].get<double>() <= 1e-12);
+  CHECK(result["recession"]["max_abs_K_d"].get<double>() <= 1e-9);
 }
 
 TEST_CASE("a cylinder pressed by a pressure onto another: the pair carries the load, Hertz for two cylinders holds",
