@@ -330,8 +330,9 @@ std::string result_json(const RunReport& report) {
     json recession = {{"f_dot_d", number(qp.f.dot(d))},
                       {"max_B_d", number(Bd.size() ? Bd.maxCoeff() : 0.0)},
                       {"max_abs_K_d", number(VectorXd(qp.K * d).cwiseAbs().maxCoeff())},
-                      {"meaning", "d (unit 2-norm on the free DOFs) with K d = 0, B d <= 0 and f.d > 0: the "
-                                  "energy falls without bound along u + t d"}};
+                      {"meaning",
+                       "d (unit 2-norm on the free DOFs) with K d = 0, B d <= 0 and f.d > 0: the "
+                       "energy falls without bound along u + t d"}};
     const std::string motion = describe_free_motion(model, d);
     if (!motion.empty()) recession["motion"] = motion;
     out["recession"] = recession;
