@@ -106,7 +106,9 @@ bool large(const std::string& scene) {
   return scene.find("-large.json") != std::string::npos || scene.find("-xl.json") != std::string::npos;
 }
 
-bool heavy(const std::string& scene) { return scene == "two-spheres.json"; }
+// The 3D scenes whose VTU the sanitizer stage skips: hertz-sphere.json's code paths in 3D run
+// there already, its force-driven twin adds only the proximal steps, which 2D scenes run too.
+bool heavy(const std::string& scene) { return scene == "two-spheres.json" || scene == "hertz-sphere-pressure.json"; }
 bool coarsened(const std::string& scene) { return scene == "mindlin-spheres.json"; }
 
 }  // namespace
@@ -116,7 +118,8 @@ TEST_CASE("the VTU of every shipped scene reads back in VTK with the named array
     if (!large(scene) && !heavy(scene) && !coarsened(scene)) check_vtu_of(scene);
 }
 
-TEST_CASE("the VTU of the two spheres in 3D reads back in VTK with the named arrays", "[unit][vtu][heavy]") {
+TEST_CASE("the VTU of the two spheres and the pressed half ball in 3D reads back in VTK with the named arrays",
+          "[unit][vtu][heavy]") {
   for (const std::string& scene : shipped_scenes())
     if (heavy(scene)) check_vtu_of(scene);
 }

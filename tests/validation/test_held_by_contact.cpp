@@ -117,7 +117,7 @@ TEST_CASE("the whole half disc pushed down is solved with its sideways translati
 }
 
 TEST_CASE("Hertz's half ball pressed by a pressure alone: the plane carries the load, Hertz's a and p0 hold",
-          "[validation][held_by_contact][3d]") {
+          "[validation][held_by_contact][3d][heavy]") {
   const SceneRun run = solve_scene("scenes/hertz-sphere-pressure.json");
   INFO(run.result.message);
   REQUIRE(run.result.status == Status::Converged);
