@@ -17,7 +17,7 @@ using namespace contactqp::testing;
 
 namespace {
 
-struct Case {
+struct RenamedKey {
   std::string scene;     // a shipped scene
   std::string patch;     // a JSON merge patch: renames a key (null removes the old one)
   std::string expected;  // the whole message
@@ -26,7 +26,7 @@ struct Case {
 }  // namespace
 
 TEST_CASE("an unknown key is reported before any missing key, at every depth", "[input]") {
-  const Case cases[] = {
+  const RenamedKey cases[] = {
       // The case of the issue: a renamed material.nu.
       {"scenes/hertz.json", R"({"material": {"nu": null, "poisson": 0.3}})",
        "material.poisson is not a valid key; did you mean \"material.nu\"?"},
@@ -79,7 +79,7 @@ TEST_CASE("an unknown key is reported before any missing key, at every depth", "
       {"scenes/hertz.json", R"({"transform": {"axis": [0, 0, 1]}})",
        "transform.axis is not a valid key in a 2D scene (\"model\": \"solid\" is 3D)"},
   };
-  for (const Case& c : cases) {
+  for (const RenamedKey& c : cases) {
     CAPTURE(c.scene, c.patch);
     CHECK_THROWS_WITH(parse_scene(patched_scene(c.scene, c.patch), source_path(c.scene)),
                       Catch::Matchers::StartsWith(c.expected));

@@ -1,7 +1,9 @@
-// Volumes of a 3D mesh, for the mesher and refinement tests.
+// Volumes and boundaries of a 3D mesh, for the mesher and refinement tests.
 #pragma once
 
 #include <Eigen/Dense>  // determinant()
+#include <catch2/catch.hpp>
+#include <set>
 
 #include "contactqp/mesh.hpp"
 #include "fe/shape_functions.hpp"
@@ -32,6 +34,17 @@ inline double isoparametric_volume(const Mesh& mesh) {
     }
   }
   return volume;
+}
+
+// Every face of the body's outer boundary belongs to exactly one named boundary, and every
+// named face is an outer face (so the boundaries tile the surface).
+inline void check_boundaries_tile_surface(const Mesh& mesh) {
+  std::multiset<std::set<int>> outer, named;
+  for (const BoundaryFace& face : outer_boundary(mesh)) outer.insert({face.nodes[0], face.nodes[1], face.nodes[2]});
+  for (const auto& [name, faces] : mesh.boundaries)
+    for (const BoundaryFace& face : faces) named.insert({face.nodes[0], face.nodes[1], face.nodes[2]});
+  CHECK(named.size() == outer.size());
+  CHECK(named == outer);
 }
 
 }  // namespace contactqp::testing

@@ -25,6 +25,7 @@
 
 using namespace contactqp;
 using namespace contactqp::detail;
+using contactqp::testing::check_boundaries_tile_surface;
 using contactqp::testing::isoparametric_volume;
 using contactqp::testing::total_volume;
 
@@ -55,17 +56,6 @@ void check_no_defect(const Mesh& mesh) {
   int defective = 0;
   for (int e = 0; e < mesh.n_elements(); ++e) defective += !element_defect(mesh, e, largest).empty();
   CHECK(defective == 0);
-}
-
-// Every face of the body's outer boundary belongs to exactly one named boundary, and every
-// named face is an outer face (so the boundaries tile the surface).
-void check_boundaries_tile_surface(const Mesh& mesh) {
-  std::multiset<std::set<int>> outer, named;
-  for (const BoundaryFace& face : outer_boundary(mesh)) outer.insert({face.nodes[0], face.nodes[1], face.nodes[2]});
-  for (const auto& [name, faces] : mesh.boundaries)
-    for (const BoundaryFace& face : faces) named.insert({face.nodes[0], face.nodes[1], face.nodes[2]});
-  CHECK(named.size() == outer.size());
-  CHECK(named == outer);
 }
 
 // Mean edge length of the tetrahedra whose centroid satisfies `near`.

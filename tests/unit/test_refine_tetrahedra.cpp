@@ -19,6 +19,7 @@
 
 using namespace contactqp;
 using namespace contactqp::detail;
+using contactqp::testing::check_boundaries_tile_surface;
 using contactqp::testing::isoparametric_volume;
 using contactqp::testing::total_volume;
 
@@ -36,15 +37,6 @@ double boundary_area(const Mesh& mesh) {
   for (const auto& [name, faces] : mesh.boundaries)
     for (const BoundaryFace& face : faces) area += face_area(mesh, face);
   return area;
-}
-
-// Every outer face of the body is exactly one named face (the boundaries tile the surface).
-void check_boundaries_tile_surface(const Mesh& mesh) {
-  std::multiset<std::set<int>> outer, named;
-  for (const BoundaryFace& face : outer_boundary(mesh)) outer.insert({face.nodes[0], face.nodes[1], face.nodes[2]});
-  for (const auto& [name, faces] : mesh.boundaries)
-    for (const BoundaryFace& face : faces) named.insert({face.nodes[0], face.nodes[1], face.nodes[2]});
-  CHECK(named == outer);
 }
 
 // Interior mid-edge nodes of a 10-node mesh sit at their edge's midpoint, in our order
