@@ -34,13 +34,6 @@ Eigen::MatrixXd small_eigenvectors(const Eigen::MatrixXd& H, const Eigen::Matrix
 
 }  // namespace
 
-double infinity_norm(const SparseMatrix& K) {
-  Eigen::VectorXd row_sums = Eigen::VectorXd::Zero(K.rows());
-  for (int j = 0; j < K.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(K, j); it; ++it) row_sums(it.row()) += std::abs(it.value());
-  return row_sums.size() == 0 ? 0.0 : row_sums.maxCoeff();
-}
-
 Eigen::MatrixXd null_space_of(const SparseMatrix& K) {
   const int n = static_cast<int>(K.rows());
   const double norm = infinity_norm(K);

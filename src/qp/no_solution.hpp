@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "contactqp/qp.hpp"
+#include "qp/norms.hpp"
 
 namespace contactqp::detail {
 
@@ -17,8 +18,7 @@ namespace contactqp::detail {
 // weaker than the body would let the load move it 1e10 times further than the body deforms.
 inline constexpr double kNullRelative = 1e-10;
 
-// max_i Σ_j |K_ij|, which bounds K's largest eigenvalue.
-double infinity_norm(const SparseMatrix& K);
+// infinity_norm(K), max_i Σ_j |K_ij|, which bounds K's largest eigenvalue: norms.hpp.
 
 // Orthonormal columns spanning the eigenvectors of K (symmetric) whose eigenvalue is at most
 // kNullRelative ‖K‖∞: dense eigenvalues up to a few hundred DOFs, else block inverse iteration

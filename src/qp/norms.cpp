@@ -7,6 +7,13 @@ namespace contactqp {
 
 double inf_norm(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
 
+double infinity_norm(const Eigen::SparseMatrix<double>& A) {
+  Eigen::VectorXd row_sums = Eigen::VectorXd::Zero(A.rows());
+  for (int j = 0; j < A.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it) row_sums(it.row()) += std::abs(it.value());
+  return row_sums.size() == 0 ? 0.0 : row_sums.maxCoeff();
+}
+
 double relative(double x, double scale) { return scale > 0 ? x / scale : x; }
 
 double relative_error(double a, double b) { return relative(std::abs(a - b), std::abs(b)); }

@@ -4,11 +4,15 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 
 namespace contactqp {
 
 // max |v_i|, and 0 for an empty vector (a QP without constraints has an empty λ).
 double inf_norm(const Eigen::VectorXd& v);
+
+// max_i Σ_j |A_ij|, which bounds a symmetric A's largest eigenvalue; 0 for an empty A.
+double infinity_norm(const Eigen::SparseMatrix<double>& A);
 
 // x / scale, or x itself when scale is not positive (a residual of a problem whose data are all 0).
 double relative(double x, double scale);

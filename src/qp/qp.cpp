@@ -4,7 +4,7 @@
 
 #include "contactqp/errors.hpp"
 #include "qp/friction_sets.hpp"
-#include "qp/no_solution.hpp"
+#include "qp/norms.hpp"
 
 namespace contactqp {
 namespace {
@@ -23,7 +23,7 @@ std::string shape(const SparseMatrix& A) { return std::to_string(A.rows()) + " Ã
 // passed modes of another K and the solve would be silently wrong.
 void validate_null_space(const QuadraticProgram& qp) {
   if (qp.null_space.cols() == 0) return;
-  const double stiffness = detail::infinity_norm(qp.K);
+  const double stiffness = infinity_norm(qp.K);
   for (long j = 0; j < qp.null_space.cols(); ++j) {
     const Eigen::VectorXd r = qp.null_space.col(j);
     const double size = r.cwiseAbs().maxCoeff();
