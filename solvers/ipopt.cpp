@@ -30,6 +30,7 @@
 #include "ipopt_friction.hpp"
 #include "multiplier_set.hpp"
 #include "qp/friction_sets.hpp"
+#include "qp/no_solution.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -48,7 +49,10 @@ std::mutex& ipopt_mutex() {
 class QpNlp : public ContactNlp {
  public:
   QpNlp(const QuadraticProgram& qp, const SolveOptions& options)
-      : qp_(qp), K_lower_(qp.K.triangularView<Eigen::Lower>()), observer_(options.observer) {
+      : qp_(qp),
+        K_lower_(qp.K.triangularView<Eigen::Lower>()),
+        observer_(options.observer),
+        longest_(longest_carried_length(qp)) {
     n_inequalities = qp.n_constraints();
   }
 
@@ -120,17 +124,27 @@ class QpNlp : public ContactNlp {
     has_solution = true;
   }
 
-  // Hands each iterate to the observer. Ipopt 3.11 offers the iterate only in its internal
-  // form: x and the multipliers y_d of the inequalities, which are ours because every row is
-  // an inequality, no variable is fixed, and Ipopt's own NLP scaling is off (see below).
+  // Hands each iterate to the observer, and stops an iterate longer than any stiffness of K
+  // carries: on a free motion the load drives, Ipopt's iterates reach ~1e16 and cycle in line
+  // searches until max_iter (10000 iterations, 23 s on a three-mass chain) without reaching
+  // its own diverging_iterates_tol (1e20). solve() then looks for the free motion. Ipopt 3.11
+  // offers the iterate only in its internal form: x and the multipliers y_d of the
+  // inequalities, which are ours because every row is an inequality, no variable is fixed, and
+  // Ipopt's own NLP scaling is off (see below).
   bool intermediate_callback(Ipopt::AlgorithmMode mode, Index iteration, Number, Number, Number, Number, Number, Number,
                              Number, Number, Index, const Ipopt::IpoptData* data,
                              Ipopt::IpoptCalculatedQuantities*) override {
-    if (!observer_ || !observe_ || mode != Ipopt::RegularMode || !data) return true;
+    if (mode != Ipopt::RegularMode || !data) return true;
     const auto* x = dynamic_cast<const Ipopt::DenseVector*>(Ipopt::GetRawPtr(data->curr()->x()));
+    if (!x || x->Dim() != qp_.n_dofs()) return true;
+    const Eigen::Map<const VectorXd> u_k(x->ExpandedValues(), x->Dim());
+    if (u_k.size() > 0 && u_k.cwiseAbs().maxCoeff() > longest_) {
+      diverged = true;
+      return false;
+    }
+    if (!observer_ || !observe_) return true;
     const auto* y_d = dynamic_cast<const Ipopt::DenseVector*>(Ipopt::GetRawPtr(data->curr()->y_d()));
-    if (!x || !y_d || x->Dim() != qp_.n_dofs() || y_d->Dim() != qp_.n_constraints()) return true;
-    const VectorXd u_k = Eigen::Map<const VectorXd>(x->ExpandedValues(), x->Dim());
+    if (!y_d || y_d->Dim() != qp_.n_constraints()) return true;
     const VectorXd lambda_k = Eigen::Map<const VectorXd>(y_d->ExpandedValues(), y_d->Dim()).cwiseMax(0.0);
     observer_(iteration + 1, u_k, lambda_k);
     return true;
@@ -143,6 +157,7 @@ class QpNlp : public ContactNlp {
   const SparseMatrix K_lower_;
   std::function<void(int, const VectorXd&, const VectorXd&)> observer_;
   bool observe_ = true;
+  const double longest_;  // longest_carried_length(qp)
 };
 
 std::string describe_range(const Ipopt::RegisteredOption& option) {
@@ -361,7 +376,9 @@ SolveResult solve_ipopt_once(const QuadraticProgram& qp, const VectorXd& radii, 
   }
   result.timings.add("solve", solve_clock.seconds());
 
-  const Outcome outcome = outcome_of(code);
+  const Outcome outcome = nlp->diverged ? Outcome{Status::Diverged, "stopped",
+                                                  "its iterate grew beyond what any stiffness of K carries"}
+                                         : outcome_of(code);
   result.status = outcome.status;
   if (Ipopt::IsValid(app->Statistics())) result.iterations = app->Statistics()->IterationCount();
   if (Ipopt::IsValid(app->IpoptDataObject())) {

@@ -34,6 +34,7 @@ class ContactNlp : public Ipopt::TNLP {
  public:
   VectorXd u, lambda, lambda_t;  // the solution Ipopt reported last
   bool has_solution = false;
+  bool diverged = false;   // the primal iterate grew beyond any stiffness (ipopt.cpp)
   int n_inequalities = 0;  // Ipopt's inequality constraints: sizes compl_inf_tol
   virtual void disable_observer() {}
 };

@@ -5,6 +5,7 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "contactqp/cholesky.hpp"
@@ -33,6 +34,14 @@ Eigen::MatrixXd small_eigenvectors(const Eigen::MatrixXd& H, const Eigen::Matrix
 }
 
 }  // namespace
+
+double longest_carried_length(const QuadraticProgram& qp) {
+  const double stiffness = infinity_norm(qp.K);
+  if (!(stiffness > 0)) return std::numeric_limits<double>::infinity();
+  const double push = qp.g.size() ? stiffness * qp.g.cwiseAbs().maxCoeff() : 0.0;
+  const double load = std::max(qp.f.size() ? qp.f.cwiseAbs().maxCoeff() : 0.0, push);
+  return load / (kNullRelative * stiffness);
+}
 
 Eigen::MatrixXd null_space_of(const SparseMatrix& K) {
   const int n = static_cast<int>(K.rows());

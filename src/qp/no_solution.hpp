@@ -20,6 +20,12 @@ inline constexpr double kNullRelative = 1e-10;
 
 // infinity_norm(K), max_i Σ_j |K_ij|, which bounds K's largest eigenvalue: norms.hpp.
 
+// The length ‖u‖∞ beyond which only a (numerically) free motion explains u: the load (or the
+// push that closes the gaps, ‖K‖∞‖g‖∞) over kNullRelative ‖K‖∞, the stiffness below which K
+// counts as singular. +∞ when K = 0 (nothing measures a length). solve() examines a certified
+// answer that long like a rejected one; a backend may stop an iterate that passes it.
+double longest_carried_length(const QuadraticProgram& qp);
+
 // Orthonormal columns spanning the eigenvectors of K (symmetric) whose eigenvalue is at most
 // kNullRelative ‖K‖∞: dense eigenvalues up to a few hundred DOFs, else block inverse iteration
 // with one CHOLMOD factorisation of K + σI and a Rayleigh–Ritz step. n × 0 when K is definite,
