@@ -2,9 +2,10 @@
 # (find_package(contactqp) -> contactqp::contactqp), contactqp.pc, and the CLI. The Python
 # module installs itself (python/CMakeLists.txt).
 #
-# The libraries are static archives, so their private dependencies (CHOLMOD, Gmsh, LAPACK,
-# Ipopt, NLopt) are link dependencies of whoever links them: contactqpConfig.cmake finds them
-# again the way this build did, with the two find modules installed beside it.
+# The libraries are static archives, so their private dependencies (CHOLMOD, LAPACK, Ipopt,
+# NLopt) are link dependencies of whoever links them: contactqpConfig.cmake finds them again the
+# way this build did, with the find module installed beside it. Gmsh is not one: the library
+# opens the Gmsh plugin, installed in lib/contactqp/, when a run meshes with it.
 include(CMakePackageConfigHelpers)
 set(CONTACTQP_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/contactqp)
 
@@ -22,7 +23,7 @@ configure_package_config_file(cmake/contactqpConfig.cmake.in ${CMAKE_CURRENT_BIN
 write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/contactqpConfigVersion.cmake
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/contactqpConfig.cmake ${CMAKE_CURRENT_BINARY_DIR}/contactqpConfigVersion.cmake
-              cmake/FindCholmod.cmake cmake/FindGmshLib.cmake
+              cmake/FindCholmod.cmake
         DESTINATION ${CONTACTQP_CMAKE_DIR})
 
 # pkg-config: the archives in link order, then what they need (static libraries carry no

@@ -376,9 +376,9 @@ SolveResult solve_ipopt_once(const QuadraticProgram& qp, const VectorXd& radii, 
   }
   result.timings.add("solve", solve_clock.seconds());
 
-  const Outcome outcome = nlp->diverged ? Outcome{Status::Diverged, "stopped",
-                                                  "its iterate grew beyond what any stiffness of K carries"}
-                                         : outcome_of(code);
+  const Outcome outcome =
+      nlp->diverged ? Outcome{Status::Diverged, "stopped", "its iterate grew beyond what any stiffness of K carries"}
+                    : outcome_of(code);
   result.status = outcome.status;
   if (Ipopt::IsValid(app->Statistics())) result.iterations = app->Statistics()->IterationCount();
   if (Ipopt::IsValid(app->IpoptDataObject())) {

@@ -18,4 +18,8 @@ struct GmshFileRequest {
 // .geo) or used.
 Mesh read_gmsh_file(const GmshFileRequest& request);
 
+// A .geo file meshed by Gmsh, in the Gmsh plugin (gmsh_plugin.hpp): read_gmsh_file() calls it
+// through the plugin's table, after checking that the file can be read.
+Mesh mesh_geo_file(const GmshFileRequest& request);
+
 }  // namespace contactqp::detail

@@ -6,9 +6,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "contactqp/mesh_file.hpp"
 #include "gmsh_model.hpp"
-#include "io/temporary_file.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -85,15 +83,3 @@ void write_gmsh_file(const Mesh& mesh, const std::string& path) {
 }
 
 }  // namespace contactqp::detail
-
-namespace contactqp {
-
-void write_mesh_file(const Mesh& mesh, const std::string& path) {
-  // Gmsh picks the format by the extension, so the temporary file ends in .msh too.
-  detail::TemporaryFile file(path, ".msh");
-  file.close_descriptor();
-  detail::write_gmsh_file(mesh, file.path());
-  file.commit();
-}
-
-}  // namespace contactqp

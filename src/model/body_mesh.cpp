@@ -7,12 +7,7 @@
 
 #include "contact/contact.hpp"
 #include "contactqp/errors.hpp"
-#include "mesh/box_mesher.hpp"
-#include "mesh/gmsh_model.hpp"
-#include "mesh/gmsh_reader.hpp"
-#include "mesh/half_disc_mesher.hpp"
-#include "mesh/hemisphere_mesher.hpp"
-#include "mesh/rectangle_mesher.hpp"
+#include "mesh/gmsh_plugin.hpp"
 #include "model_parts.hpp"
 #include "qp/pi.hpp"
 
@@ -80,7 +75,7 @@ auto generate(const Mesher& mesher) -> decltype(mesher()) {
   } catch (const std::exception& error) {
     throw InputError("body.mesh", std::string("could not be meshed: ") + error.what());
   } catch (...) {
-    throw InputError("body.mesh", "could not be meshed: " + gmsh_error_text());
+    throw InputError("body.mesh", "could not be meshed: " + gmsh_plugin().gmsh_error_text());
   }
 }
 
@@ -106,8 +101,8 @@ CoarseMesh coarse_half_disc_body(const Scene& scene, double max_gap, const Build
             [](double phi) { return Eigen::Vector3d(std::sin(phi), -std::cos(phi), 0.0); },
             body.symmetry ? 0.0 : -kPi / 2, kPi / 2};
   request.fine = fine_intervals(arc, scene.obstacles, max_gap, body.mesh.contact_size / R);
-  refuse_oversized(estimate_half_disc_triangles(request), options);
-  return generate([&] { return coarse_half_disc(request); });
+  refuse_oversized(gmsh_plugin().estimate_half_disc_triangles(request), options);
+  return generate([&] { return gmsh_plugin().coarse_half_disc(request); });
 }
 
 Mesh mesh_rectangle_body(const Scene& scene, double max_gap, const BuildOptions& options) {
@@ -117,15 +112,15 @@ Mesh mesh_rectangle_body(const Scene& scene, double max_gap, const BuildOptions&
   request.height = body.height;
   copy_mesh_spec(body, request);
   request.fine_side = scene.contact.boundary;
-  for (const RectangleSide& side : rectangle_sides(body.width, body.height, body.symmetry)) {
+  for (const RectangleSide& side : gmsh_plugin().rectangle_sides(body.width, body.height, body.symmetry)) {
     if (side.name != request.fine_side) continue;
     const Eigen::Vector3d a(side.a.x(), side.a.y(), 0.0), d(side.b.x() - side.a.x(), side.b.y() - side.a.y(), 0.0);
     const Eigen::Vector3d outward = Eigen::Vector3d(d.y(), -d.x(), 0.0).normalized();
     Curve line{[a, d](double t) { return Eigen::Vector3d(a + t * d); }, [outward](double) { return outward; }};
     request.fine = fine_intervals(line, scene.obstacles, max_gap, body.mesh.contact_size / d.norm());
   }
-  refuse_oversized(estimate_rectangle_triangles(request), options);
-  return generate([&] { return mesh_rectangle(request); });
+  refuse_oversized(gmsh_plugin().estimate_rectangle_triangles(request), options);
+  return generate([&] { return gmsh_plugin().mesh_rectangle(request); });
 }
 
 // The radius, around the lowest point of a body's contact face (the origin), within which it may
@@ -168,8 +163,8 @@ CoarseMesh coarse_hemisphere_body(const Scene& scene, double max_gap, const Buil
     return Eigen::Vector3d((surface(r, angle) - Eigen::Vector3d(0, 0, R)) / R);
   };
   request.fine_radius = fine_radius(surface, outward, R, scene.obstacles, max_gap, body.mesh.contact_size);
-  refuse_oversized(estimate_hemisphere_elements(request), options, "tetrahedra");
-  return generate([&] { return coarse_hemisphere(request); });
+  refuse_oversized(gmsh_plugin().estimate_hemisphere_elements(request), options, "tetrahedra");
+  return generate([&] { return gmsh_plugin().coarse_hemisphere(request); });
 }
 
 Mesh mesh_box_body(const Scene& scene, double max_gap, const BuildOptions& options) {
@@ -197,8 +192,8 @@ Mesh mesh_box_body(const Scene& scene, double max_gap, const BuildOptions& optio
       if (centred && ++punches == 1) request.rim_radius = punch->radius;
     }
   if (punches > 1) request.rim_radius = 0;
-  refuse_oversized(estimate_box_elements(request), options, "tetrahedra");
-  return generate([&] { return mesh_box(request); });
+  refuse_oversized(gmsh_plugin().estimate_box_elements(request), options, "tetrahedra");
+  return generate([&] { return gmsh_plugin().mesh_box(request); });
 }
 
 }  // namespace
@@ -240,7 +235,7 @@ CoarseMesh body_refinement(const Scene& scene) {
   if (body.mesh.refinements == 0 || (body.shape != "half_disc" && body.shape != "hemisphere")) return how;
   how.refinements = body.mesh.refinements;
   how.order = body.mesh.order;
-  how.snap = body.shape == "half_disc" ? half_disc_snap() : hemisphere_snap();
+  how.snap = body.shape == "half_disc" ? gmsh_plugin().half_disc_snap() : gmsh_plugin().hemisphere_snap();
   how.scale = body.radius;
   return how;
 }
