@@ -5,6 +5,21 @@
 #include "contactqp/processes.hpp"
 
 namespace contactqp::detail {
+namespace {
+
+PhaseFaults& installed_faults() {
+  static PhaseFaults faults;
+  return faults;
+}
+
+}  // namespace
+
+void install_phase_faults(const PhaseFaults& faults) { installed_faults() = faults; }
+
+double failed_process_grace_seconds() {
+  const PhaseFaults& faults = installed_faults();
+  return faults.grace_seconds ? faults.grace_seconds() : failure_grace_seconds;
+}
 
 void checkpoint() {
   if (process_count() <= 1) return;
@@ -15,7 +30,7 @@ void checkpoint() {
 
 void begin_phase(const std::string& phase) {
   checkpoint();
-  raise_test_fault(phase);
+  if (const PhaseFaults& faults = installed_faults(); faults.raise) faults.raise(phase);
 }
 
 }  // namespace contactqp::detail

@@ -30,8 +30,8 @@ class FailedElsewhere : public std::exception {
 };
 
 // Called by every process as `phase` begins: agrees with the others that none has failed
-// (collective on several processes, nothing on one), then raises the test fault this phase
-// has if CONTACTQP_TEST_FAULT names it (test_fault.cpp). Throws FailedElsewhere.
+// (collective on several processes, nothing on one), then raises the fault this phase has if a
+// test build installed one (PhaseFaults below). Throws FailedElsewhere.
 void begin_phase(const std::string& phase);
 
 // The same agreement within a phase: after local work that can fail on some processes only
@@ -41,13 +41,18 @@ void begin_phase(const std::string& phase);
 void checkpoint();
 
 // How long a process that failed waits for the others to reach a boundary before it prints its
-// line and ends them all (agree_on_failure): failure_grace_seconds (30 s), or the test fault's GRACE.
+// line and ends them all (agree_on_failure): failure_grace_seconds (30 s), or the installed
+// faults' grace_seconds().
 double failed_process_grace_seconds();
 
-// CONTACTQP_TEST_FAULT=RANK:PHASE:KIND[:GRACE], for tests only: process RANK throws as PHASE begins —
-// KIND input (InputError, exit 2), error (std::runtime_error, exit 1) or memory (std::bad_alloc,
-// exit 1); GRACE shortens the wait above (seconds). Nothing when the variable is unset; InputError
-// naming it when it is malformed.
-void raise_test_fault(const std::string& phase);
+// Failures injected as phases begin, for the tests of a failure on one process only. The library
+// and the installed program carry none: the test build's program contactqp_fault_cli installs
+// them (tests/support/test_fault.cpp: CONTACTQP_TEST_FAULT=RANK:PHASE:KIND[:GRACE]). `raise` is
+// called as each phase begins, `grace_seconds` replaces failure_grace_seconds.
+struct PhaseFaults {
+  void (*raise)(const std::string& phase) = nullptr;
+  double (*grace_seconds)() = nullptr;
+};
+void install_phase_faults(const PhaseFaults& faults);
 
 }  // namespace contactqp::detail

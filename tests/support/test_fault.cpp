@@ -1,6 +1,13 @@
-// raise_test_fault() and failed_process_grace_seconds() (phases.hpp): a failure on one process,
-// as one phase begins, as tests/tools/check_rank_faults.py asks for through CONTACTQP_TEST_FAULT.
-// Read on every call (a few times per run).
+// The faults of the test build's program, contactqp_fault_cli (phases.hpp, PhaseFaults): a
+// failure on one process, as one phase begins, as tests/tools/check_rank_faults.py asks for:
+//
+//   CONTACTQP_TEST_FAULT=RANK:PHASE:KIND[:GRACE]
+//
+// process RANK throws as PHASE begins — KIND input (InputError, exit 2), error
+// (std::runtime_error, exit 1) or memory (std::bad_alloc, exit 1); GRACE (seconds) shortens how
+// long the failed process waits for the others. Nothing when the variable is unset; InputError
+// naming it when it is malformed. Read on every call (a few times per run). Linked into that
+// program only, never into the library or the installed contactqp.
 #include <cstdlib>
 #include <new>
 #include <sstream>
@@ -49,9 +56,7 @@ TestFault test_fault() {
   return fault;
 }
 
-}  // namespace
-
-double failed_process_grace_seconds() {
+double grace_seconds() {
   try {
     return test_fault().grace;
   } catch (const InputError&) {
@@ -68,4 +73,8 @@ void raise_test_fault(const std::string& phase) {
   throw std::runtime_error("CONTACTQP_TEST_FAULT = \"" + fault.spec + "\": an error " + where);
 }
 
+// Installed before main() runs: this file is one of the program's own sources.
+[[maybe_unused]] const bool installed = (install_phase_faults({&raise_test_fault, &grace_seconds}), true);
+
+}  // namespace
 }  // namespace contactqp::detail
