@@ -5,12 +5,12 @@
 
 #include "backends.hpp"
 #include "contactqp/certificate.hpp"
+#include "contactqp/number_format.hpp"
 #include "coulomb_fixed_point.hpp"
 #include "friction_ssn.hpp"
 #include "multiplier_set.hpp"
 #include "qp/friction_sets.hpp"
 #include "qp/norms.hpp"
-#include "qp/number_format.hpp"
 
 namespace contactqp::detail {
 namespace {

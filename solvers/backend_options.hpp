@@ -1,6 +1,6 @@
 // Backend options given as text (--backend-option key=value, a scene's solver.options): which
 // keys a backend reads, and the strict parsing of their values (the norms and number formats the
-// backends' messages share come with it, from src/qp/norms.hpp and number_format.hpp).
+// backends' messages share come with it, from src/qp/norms.hpp and contactqp/number_format.hpp).
 //
 // A key may be addressed to one backend by prefixing its name, "ipopt.print_level": `compare`
 // runs several backends from one command line, and each reads only its own keys and the
@@ -10,9 +10,9 @@
 #include <map>
 #include <string>
 
+#include "contactqp/number_format.hpp"
 #include "contactqp/qp.hpp"
 #include "qp/norms.hpp"
-#include "qp/number_format.hpp"
 
 namespace contactqp::detail {
 

@@ -1,7 +1,7 @@
 #include "coulomb_fixed_point.hpp"
 
+#include "contactqp/number_format.hpp"
 #include "qp/norms.hpp"
-#include "qp/number_format.hpp"
 
 namespace contactqp::detail {
 

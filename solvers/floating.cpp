@@ -12,9 +12,9 @@
 #include "backends.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
+#include "contactqp/number_format.hpp"
 #include "qp/no_solution.hpp"
 #include "qp/norms.hpp"
-#include "qp/number_format.hpp"
 
 namespace contactqp::detail {
 namespace {

@@ -5,9 +5,9 @@
 
 #include "backend_options.hpp"
 #include "contactqp/certificate.hpp"
+#include "contactqp/number_format.hpp"
 #include "coulomb_fixed_point.hpp"
 #include "qp/norms.hpp"
-#include "qp/number_format.hpp"
 
 namespace contactqp::detail {
 namespace {

@@ -24,9 +24,9 @@
 #include "contactqp/errors.hpp"
 #include "contactqp/io.hpp"
 #include "contactqp/model.hpp"
+#include "contactqp/number_format.hpp"
 #include "contactqp/solve.hpp"
 #include "context.hpp"
-#include "qp/number_format.hpp"
 
 using namespace contactqp;
 

@@ -14,10 +14,10 @@
 #include "contactqp/errors.hpp"
 #include "contactqp/io.hpp"
 #include "contactqp/model.hpp"
+#include "contactqp/number_format.hpp"
 #include "contactqp/timer.hpp"
 #include "context.hpp"
 #include "hertz_levels.hpp"
-#include "qp/number_format.hpp"
 
 using namespace contactqp;
 using namespace contactqp::bench;

@@ -31,10 +31,10 @@
 #include "contactqp/errors.hpp"
 #include "contactqp/io.hpp"
 #include "contactqp/model.hpp"
+#include "contactqp/number_format.hpp"
 #include "contactqp/solve.hpp"
 #include "context.hpp"
 #include "hertz_levels.hpp"
-#include "qp/number_format.hpp"
 
 using namespace contactqp;
 using namespace contactqp::bench;

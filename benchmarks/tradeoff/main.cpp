@@ -34,13 +34,13 @@
 #include "contactqp/errors.hpp"
 #include "contactqp/io.hpp"
 #include "contactqp/model.hpp"
+#include "contactqp/number_format.hpp"
 #include "contactqp/post.hpp"
 #include "contactqp/solve.hpp"
 #include "context.hpp"
 #include "peer_mesh.hpp"
 #include "pressure_difference.hpp"
 #include "qp/norms.hpp"
-#include "qp/number_format.hpp"
 
 using namespace contactqp;
 

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace contactqp {
 
@@ -23,7 +24,7 @@ class InputError : public std::runtime_error {
   std::string field_;
 };
 
-namespace detail {
+// A value as the messages write it (12 significant digits: "0.5", "1e-12").
 template <class T>
 std::string format_value(const T& value) {
   std::ostringstream out;
@@ -38,13 +39,14 @@ std::string format_point(const Vector& x, int dim) {
   for (int c = 0; c < dim; ++c) text += (c ? ", " : "") + format_value(x[c]);
   return text + ")";
 }
-}  // namespace detail
+// "a, b, c": a list of valid names in a message.
+std::string join(const std::vector<std::string>& words);
 
 // require(nu > -1 && nu < 0.5, "material.nu", nu, "must lie in (-1, 0.5)")
 //   throws "material.nu = 0.5: must lie in (-1, 0.5)" when the condition fails.
 template <class T>
 void require(bool condition, const std::string& field, const T& value, const std::string& rule) {
-  if (!condition) throw InputError(field, "= " + detail::format_value(value) + ": " + rule);
+  if (!condition) throw InputError(field, "= " + format_value(value) + ": " + rule);
 }
 
 }  // namespace contactqp

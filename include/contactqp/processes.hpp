@@ -26,7 +26,7 @@ void start_process_runtime(const std::map<std::string, std::string>& library_opt
 // Connects the processes launched together (MPI alone, no library on it yet), once per process,
 // if a runtime is built in; nothing otherwise. main() calls it first when the launcher says there
 // are several, so that every failure, even in reading the scene, is agreed at the next phase
-// boundary (run/phases.hpp). start_process_runtime() later finds the connection and uses it.
+// boundary (contactqp/phases.hpp). start_process_runtime() later finds the connection and uses it.
 void connect_processes();
 
 // What the processes agreed on (agree_on_failure()).
@@ -40,7 +40,7 @@ struct AgreedFailure {
 // The one protocol by which the processes of a run agree on a failure (docs/petsc.md, "When one
 // rank fails"). Every process calls it at the same point with its status and its error (0 and
 // "" when it has not failed) and learns the largest status and the first process's error:
-//   - at a boundary, a process that has not failed (run/phases.hpp's checkpoint(), every phase
+//   - at a boundary, a process that has not failed (phases.hpp's checkpoint(), every phase
 //     and step of a run), where one that failed meets it from main() with its exit status and
 //     error line (its last agreement: it left the run when it failed);
 //   - within a step whose failure every process must know to take the same branch, each with

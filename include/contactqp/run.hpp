@@ -51,6 +51,11 @@ RunReport run_scene(const Scene& scene, const RunOptions& options = {});
 // The same for a scene file (InputError("path", ...) when it cannot be read).
 RunReport run_scene(const std::string& scene_path, const RunOptions& options = {});
 
+// Whether run_scene() takes the distributed path for this scene with these options (under
+// mpirun, or options.distributed on one process; false when contactqp was built without
+// PETSc): such a run writes its ParaView file in pieces, one per process, joined by a .pvtu.
+bool runs_distributed(const Scene& scene, const RunOptions& options);
+
 // The contact a solution gives: the summary over the obstacles, each pair's, the supports'
 // reactions and, with friction, each row's friction (FrictionZone in the summaries too).
 struct PostProcessed {

@@ -161,7 +161,7 @@ model's), for the thickness in 2D; the same numbers as the result JSON's pairs[i
           "two cylinders (2D) or spheres (3D): a contactqp.HertzComparison, or None")
       .def("__repr__", [](const PairView& v) {
         return "<contactqp.PairResult " + v.pair().node_side + " / " + v.pair().face_side +
-               " force=" + detail::format_value(v.pair().line_load) + ">";
+               " force=" + format_value(v.pair().line_load) + ">";
       });
 
   py::class_<BodyView>(m, "BodyResult", R"(One body of a scene with several (docs/bodies.md), read-only.

@@ -29,14 +29,14 @@ void check_finite_matrix(const SparseMatrix& matrix, const std::string& field) {
     for (SparseMatrix::InnerIterator it(matrix, c); it; ++it)
       if (!std::isfinite(it.value()))
         throw InputError(field, "[" + std::to_string(it.row()) + ", " + std::to_string(it.col()) +
-                                    "] = " + detail::format_value(it.value()) + ": every entry must be finite");
+                                    "] = " + format_value(it.value()) + ": every entry must be finite");
 }
 
 void check_finite_vector(const VectorXd& vector, const std::string& field) {
   for (Eigen::Index i = 0; i < vector.size(); ++i)
     if (!std::isfinite(vector[i]))
-      throw InputError(
-          field, "[" + std::to_string(i) + "] = " + detail::format_value(vector[i]) + ": every entry must be finite");
+      throw InputError(field,
+                       "[" + std::to_string(i) + "] = " + format_value(vector[i]) + ": every entry must be finite");
 }
 
 std::string shape(const SparseMatrix& m) {
@@ -76,8 +76,8 @@ QuadraticProgram make_qp(py::handle K_in, py::handle f_in, py::handle B_in, py::
   const SparseMatrix asymmetry = qp.K - SparseMatrix(qp.K.transpose());
   const double worst = asymmetry.nonZeros() > 0 ? asymmetry.coeffs().cwiseAbs().maxCoeff() : 0.0;
   if (worst > kSymmetryTolerance * scale)
-    throw InputError("K", "is not symmetric: max |K - K^T| = " + detail::format_value(worst) + " against max |K| = " +
-                              detail::format_value(scale) + " (the stiffness must be symmetric positive definite)");
+    throw InputError("K", "is not symmetric: max |K - K^T| = " + format_value(worst) + " against max |K| = " +
+                              format_value(scale) + " (the stiffness must be symmetric positive definite)");
   if (!R_in.is_none()) {
     // A 1-D array is one mode; a 2-D array holds one mode per column (n × k).
     py::object array = py::module_::import("numpy").attr("asarray")(R_in, "float64");
@@ -279,8 +279,8 @@ The scales are documented in include/contactqp/certificate.hpp.)")
       .def_property_readonly("kkt_max", &Certificate::kkt_max, "the largest of the four relative KKT residuals")
       .def("as_dict", &certificate_dict, "Every number above in a dict.")
       .def("__repr__", [](const Certificate& c) {
-        return "<contactqp.Certificate kkt_max=" + detail::format_value(c.kkt_max()) +
-               (c.dual_available ? " relative_gap=" + detail::format_value(c.relative_gap) : std::string()) + ">";
+        return "<contactqp.Certificate kkt_max=" + format_value(c.kkt_max()) +
+               (c.dual_available ? " relative_gap=" + format_value(c.relative_gap) : std::string()) + ">";
       });
 
   py::class_<Solution>(m, "Solution", R"(The outcome of contactqp.solve(): u (also x), lam (also z),
@@ -322,7 +322,7 @@ certificate, backend, and converged (status == Status.CONVERGED).)")
       .def("__repr__", [](const Solution& s) {
         return "<contactqp.Solution backend=" + to_string(s.backend) + " status=" + to_string(s.result.status) +
                " iterations=" + std::to_string(s.result.iterations) +
-               " kkt_max=" + detail::format_value(s.certificate.kkt_max()) + ">";
+               " kkt_max=" + format_value(s.certificate.kkt_max()) + ">";
       });
 
   m.def(

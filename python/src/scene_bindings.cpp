@@ -158,8 +158,8 @@ void bind_scene(py::module_& m) {
       .def_readonly("error_max_pressure", &HertzComparison::error_max_pressure, "(p_max - p0) / p0")
       .def_readonly("error_l2", &HertzComparison::error_l2, "||p_h - p_Hertz||_L2 / ||p_Hertz||_L2")
       .def("__repr__", [](const HertzComparison& h) {
-        return "<contactqp.HertzComparison b=" + detail::format_value(h.half_width) +
-               " p0=" + detail::format_value(h.max_pressure) + ">";
+        return "<contactqp.HertzComparison b=" + format_value(h.half_width) + " p0=" + format_value(h.max_pressure) +
+               ">";
       });
 
   py::class_<PunchComparison>(m, "PunchComparison",
@@ -201,8 +201,8 @@ void bind_scene(py::module_& m) {
           "N x 2 array of (s, pressure) per candidate, sorted by obstacle then s")
       .def_property_readonly("obstacles", &obstacles_list, "one dict per obstacle, as the JSON's contact.obstacles")
       .def("__repr__", [](const ContactView& v) {
-        return "<contactqp.ContactResult force=" + detail::format_value(v.summary.total_force) +
-               " half_width=" + detail::format_value(v.summary.half_width) + ">";
+        return "<contactqp.ContactResult force=" + format_value(v.summary.total_force) +
+               " half_width=" + format_value(v.summary.half_width) + ">";
       });
 
   using Report = std::shared_ptr<RunReport>;
@@ -267,8 +267,8 @@ warnings; json(), csv(), vtu() give the output files' text.)")
           "vtu", [](const RunReport& r) { return vtu_document(r); }, "the ParaView .vtu file (--vtu)")
       .def("__repr__", [](const RunReport& r) {
         return "<contactqp.SceneResult " + r.model->scene.source + " status=" + to_string(r.result.status) +
-               " iterations=" + std::to_string(r.result.iterations) +
-               " force=" + detail::format_value(r.contact.total_force) + ">";
+               " iterations=" + std::to_string(r.result.iterations) + " force=" + format_value(r.contact.total_force) +
+               ">";
       });
 
   m.def(

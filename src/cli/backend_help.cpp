@@ -3,14 +3,14 @@
 
 #include "commands.hpp"
 #include "contactqp/backend.hpp"
-#include "qp/words.hpp"
+#include "contactqp/errors.hpp"
 
 namespace contactqp::cli {
 
 std::string backend_names() {
   std::vector<std::string> names;
   for (Backend backend : available_backends()) names.push_back(to_string(backend));
-  return detail::join(names);
+  return join(names);
 }
 
 std::string backends_help() {
@@ -25,11 +25,11 @@ std::string backends_help() {
     // The problems it solves (available_backends(ProblemKind)): friction is refused elsewhere.
     std::vector<std::string> kinds;
     for (ProblemKind kind : registration->problem_kinds) kinds.push_back(to_string(kind));
-    line += "; solves " + detail::join(kinds);
+    line += "; solves " + join(kinds);
     if (registration->problem_kinds.size() > 1 && registration->max_friction_directions < 2)
       line += " (friction in 2D only)";
     if (!registration->option_names.empty())
-      line += "; options " + detail::join(registration->option_names) +
+      line += "; options " + join(registration->option_names) +
               (registration->library_options ? " (and any other of its library's own)" : "");
     text += line + "\n";
   }

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "contactqp/io.hpp"
-#include "qp/number_format.hpp"
+#include "contactqp/number_format.hpp"
 
 namespace CLI {
 class App;

@@ -5,8 +5,8 @@
 
 #include "commands.hpp"
 #include "contactqp/errors.hpp"
+#include "contactqp/phases.hpp"
 #include "contactqp/processes.hpp"
-#include "run/phases.hpp"
 
 int main(int argc, char** argv) {
   // Launched as several processes (mpirun): connected first, so that a failure on one of them,
@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
     return app.exit(help);
   } catch (const CLI::CallForVersion& version) {
     return app.exit(version);
-  } catch (const contactqp::detail::FailedElsewhere& failed) {
+  } catch (const contactqp::FailedElsewhere& failed) {
     // Another process failed and printed the line; the agreement is made.
     std::cout << std::flush;
     return failed.status();
@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
   }
   std::cout << std::flush;
   const contactqp::AgreedFailure agreed =
-      contactqp::agree_on_failure(exit_status, error, contactqp::detail::failed_process_grace_seconds());
+      contactqp::agree_on_failure(exit_status, error, contactqp::failed_process_grace_seconds());
   // The first process with an error speaks for the run, naming itself when not every one failed.
   if (!error.empty() && agreed.process == contactqp::process_rank())
     std::cerr << "contactqp: error: " << error

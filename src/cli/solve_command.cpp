@@ -7,13 +7,12 @@
 
 #include "commands.hpp"
 #include "contactqp/errors.hpp"
+#include "contactqp/phases.hpp"
 #include "contactqp/processes.hpp"
 #include "contactqp/run.hpp"
-#include "io/temporary_file.hpp"
+#include "contactqp/temporary_file.hpp"
 #include "phase_memory.hpp"
 #include "progress.hpp"
-#include "run/distributed_run.hpp"
-#include "run/phases.hpp"
 
 namespace contactqp::cli {
 
@@ -72,7 +71,7 @@ int run_solve(const SolveArguments& arguments) {
       arguments.scene_path,
       {{"--json", arguments.json_path}, {"--csv", arguments.csv_path}, {"--vtu", arguments.vtu_path}});
   require(arguments.max_elements > 0, "--max-elements", arguments.max_elements, "must be positive");
-  detail::begin_phase("read");
+  begin_phase("read");
   Scene scene = load_scene(arguments.scene_path);
   apply_overrides(arguments, scene.solver);
   if (arguments.no_estimate) scene.estimate = false;
@@ -87,7 +86,7 @@ int run_solve(const SolveArguments& arguments) {
   options.distributed = true;
   // A distributed run writes its ParaView file in pieces, one per process, joined by a .pvtu;
   // on one process its one piece may be the .vtu itself.
-  const bool distributed = detail::runs_distributed(scene, options);
+  const bool distributed = runs_distributed(scene, options);
   const bool parallel_file =
       arguments.vtu_path.size() > 5 && arguments.vtu_path.compare(arguments.vtu_path.size() - 5, 5, ".pvtu") == 0;
   const bool one_piece = distributed && process_count() == 1;
@@ -114,16 +113,16 @@ int run_solve(const SolveArguments& arguments) {
     // The output files: the CSV and the ParaView file, timed as "write", then the JSON, which
     // records that time. Each is written beside its target and renamed into place only once
     // every rank has got that far: a rank that failed meanwhile leaves no file.
-    detail::begin_phase("write");
+    begin_phase("write");
     progress.set("write", 0);
     if (arguments.phase_memory) memory.start("write");
-    std::vector<std::unique_ptr<detail::TemporaryFile>> staged;
+    std::vector<std::unique_ptr<TemporaryFile>> staged;
     const auto stage = [&staged](const std::string& path, const std::string& content) {
-      staged.push_back(std::make_unique<detail::TemporaryFile>(path));
+      staged.push_back(std::make_unique<TemporaryFile>(path));
       staged.back()->write(content);
     };
     const auto commit = [&staged] {
-      detail::checkpoint();
+      checkpoint();
       for (const auto& file : staged) file->commit();
     };
     Stopwatch clock;

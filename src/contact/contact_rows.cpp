@@ -194,13 +194,12 @@ void remove_prescribed_candidates(Model& model) {
         candidate.pair >= 0)
       throw InputError(model.scene.pairs[candidate.pair].path,
                        "prescribes node " + std::to_string(candidate.node) + " at " +
-                           detail::format_point(model.mesh.nodes[candidate.node], model.dim) + " " +
-                           detail::format_value(-row.g) + " deep into the other body");
+                           format_point(model.mesh.nodes[candidate.node], model.dim) + " " + format_value(-row.g) +
+                           " deep into the other body");
     if (row.g < -1e-12 * std::max(1e-300, std::abs(candidate.gap) + model.prescribed.cwiseAbs().maxCoeff()))
       throw InputError("load", "prescribes node " + std::to_string(candidate.node) + " at " +
-                                   detail::format_point(model.mesh.nodes[candidate.node], model.dim) + " " +
-                                   detail::format_value(-row.g) + " deep into obstacle " +
-                                   std::to_string(candidate.obstacle));
+                                   format_point(model.mesh.nodes[candidate.node], model.dim) + " " +
+                                   format_value(-row.g) + " deep into obstacle " + std::to_string(candidate.obstacle));
   }
   model.candidates = std::move(kept);
 }

@@ -13,10 +13,10 @@
 
 #include "coarse_lattice.hpp"
 #include "contactqp/errors.hpp"
+#include "contactqp/phases.hpp"
 #include "element_partition.hpp"
 #include "model/model_parts.hpp"
 #include "petsc/petsc_runtime.hpp"
-#include "run/phases.hpp"
 #include "world.hpp"
 
 namespace contactqp::detail {

@@ -8,8 +8,8 @@
 
 #include "contact/contact.hpp"
 #include "contactqp/errors.hpp"
+#include "contactqp/phases.hpp"
 #include "model/model_parts.hpp"
-#include "run/phases.hpp"
 #include "world.hpp"
 
 namespace contactqp::detail {

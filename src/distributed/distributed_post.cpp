@@ -11,8 +11,8 @@
 #include <unordered_map>
 
 #include "contact/contact.hpp"
-#include "io/temporary_file.hpp"
-#include "run/phases.hpp"
+#include "contactqp/phases.hpp"
+#include "contactqp/temporary_file.hpp"
 #include "world.hpp"
 
 namespace contactqp::detail {

@@ -13,12 +13,12 @@
 #include "coarse_lattice.hpp"
 #include "contact/contact.hpp"
 #include "contactqp/errors.hpp"
+#include "contactqp/phases.hpp"
 #include "fe/node_elements.hpp"
 #include "fe/stiffness_matrix.hpp"
 #include "model/rigid_body_modes.hpp"
 #include "petsc/petsc_runtime.hpp"
 #include "qp/bound_transform.hpp"
-#include "run/phases.hpp"
 #include "world.hpp"
 
 namespace contactqp::detail {

@@ -13,14 +13,14 @@
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/linear_solver.hpp"
+#include "contactqp/number_format.hpp"
+#include "contactqp/phases.hpp"
 #include "contactqp/processes.hpp"
 #include "contactqp/solve.hpp"
 #include "distributed_post.hpp"
 #include "mpi.hpp"
 #include "qp/builtins.hpp"
-#include "qp/number_format.hpp"
 #include "run/distributed_run.hpp"
-#include "run/phases.hpp"
 
 namespace contactqp::detail {
 namespace {

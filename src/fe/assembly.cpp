@@ -55,8 +55,8 @@ void refuse_unrepresentable(const Model& model, double largest_k, bool k_finite,
   constexpr double kSmallest = std::numeric_limits<double>::min() / std::numeric_limits<double>::epsilon();
   const double thickness = model.scene.body.thickness;
   const std::string stiffness =
-      "= " + detail::format_value(model.scene.material.E) +
-      (thickness != 1 ? " (body.thickness = " + detail::format_value(thickness) + ")" : std::string());
+      "= " + format_value(model.scene.material.E) +
+      (thickness != 1 ? " (body.thickness = " + format_value(thickness) + ")" : std::string());
   if (!k_finite)
     throw InputError("material.E", stiffness + ": the stiffness matrix overflows double precision; use other units");
   if (largest_k < kSmallest)
@@ -112,8 +112,8 @@ void apply_load_step(Model& model, QuadraticProgram& qp, const std::vector<doubl
           std::abs(prescribed[dof] - scaled) > 1e-12 * std::max(std::abs(scaled), std::abs(prescribed[dof])))
         throw InputError(step, "prescribes node " + std::to_string(dof / model.dim) + " by " +
                                    model.scene.loads[other].path + " and by " + model.scene.loads[l].path +
-                                   " to different values (" + detail::format_value(prescribed[dof]) + " and " +
-                                   detail::format_value(scaled) + "): scale them alike");
+                                   " to different values (" + format_value(prescribed[dof]) + " and " +
+                                   format_value(scaled) + "): scale them alike");
       prescribed[dof] = scaled;
       prescribed_by[dof] = static_cast<int>(l);
     }

@@ -3,7 +3,7 @@
 // is killed — sees the previous file or the complete new one (tests/input/test_kill_write.cpp
 // kills runs while they write and checks it). A killed writer leaves its temporary file behind;
 // the next write of the same target removes the ones whose writer is gone.
-#include "io/temporary_file.hpp"
+#include "contactqp/temporary_file.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -47,8 +47,6 @@ fs::path directory_of(const fs::path& target) {
 }
 
 }  // namespace
-
-namespace detail {
 
 void remove_abandoned_temporaries(const std::string& path, const std::string& suffix) {
   const fs::path target(path);
@@ -133,8 +131,6 @@ void TemporaryFile::close_descriptor() {
   fd_ = -1;
 }
 
-}  // namespace detail
-
 void check_output_path(const std::string& path, const std::string& field) {
   if (path.empty()) throw InputError(field, "= \"\": an output path is required");
   std::error_code error;
@@ -147,7 +143,7 @@ void check_output_path(const std::string& path, const std::string& field) {
 }
 
 void write_file_atomically(const std::string& path, const std::string& content) {
-  detail::TemporaryFile file(path);
+  TemporaryFile file(path);
   file.write(content);
   file.commit();
 }

@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "contactqp/mesh_file.hpp"
-#include "io/temporary_file.hpp"
+#include "contactqp/temporary_file.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -82,7 +82,7 @@ namespace contactqp {
 void write_mesh_file(const Mesh& mesh, const std::string& path) {
   const detail::GmshPlugin& gmsh = detail::gmsh_plugin();
   // Gmsh picks the format by the extension, so the temporary file ends in .msh too.
-  detail::TemporaryFile file(path, ".msh");
+  TemporaryFile file(path, ".msh");
   file.close_descriptor();
   gmsh.write_gmsh_file(mesh, file.path());
   file.commit();

@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "contactqp/number_format.hpp"
 #include "fe/shape_functions.hpp"
-#include "qp/number_format.hpp"
 
 namespace contactqp {
 namespace {

@@ -61,7 +61,7 @@ void refuse_oversized(double estimate, const BuildOptions& options, const std::s
   // Written so that a NaN estimate is refused too; sizes that underflow give +inf.
   if (!(estimate <= static_cast<double>(options.max_elements)))
     throw InputError("body.mesh", "would have " +
-                                      (std::isfinite(estimate) ? "about " + detail::format_value(std::round(estimate))
+                                      (std::isfinite(estimate) ? "about " + format_value(std::round(estimate))
                                                                : std::string("unboundedly many")) +
                                       " " + what + ", more than the limit of " + std::to_string(options.max_elements) +
                                       "; coarsen body.mesh.size or contact_size, or raise --max-elements");

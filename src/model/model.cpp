@@ -34,14 +34,13 @@ void warn_near_incompressible(const Scene& scene, const Mesh& mesh, std::vector<
     if ((mesh.order == 1 && scene.material.nu > kLinearLockingNu) ||
         (mesh.order == 2 && scene.material.nu > kQuadraticLockingNu))
       warnings.push_back(
-          "material.nu = " + detail::format_value(scene.material.nu) + " with " +
-          (mesh.order == 1 ? "4-node" : "10-node") +
+          "material.nu = " + format_value(scene.material.nu) + " with " + (mesh.order == 1 ? "4-node" : "10-node") +
           " tetrahedra: they lock as nu -> 0.5 (too stiff: the force for a prescribed push is overstated)");
     return;
   }
   if (scene.model != ElasticModel::PlaneStrain || scene.body.formulation == Formulation::Mixed) return;
   const double nu = scene.material.nu;
-  const std::string value = "material.nu = " + detail::format_value(nu);
+  const std::string value = "material.nu = " + format_value(nu);
   if (mesh.order == 1 && nu > kLinearLockingNu)
     warnings.push_back(value +
                        " with 3-node triangles in plane strain: they lock as nu -> 0.5 (too stiff: the force "

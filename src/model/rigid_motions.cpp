@@ -17,8 +17,8 @@
 #include <numeric>
 
 #include "contactqp/errors.hpp"
+#include "contactqp/number_format.hpp"
 #include "model_parts.hpp"
-#include "qp/number_format.hpp"
 
 namespace contactqp::detail {
 namespace {

@@ -133,7 +133,7 @@ Backend parse_backend(const std::string& name, const std::string& field) {
     valid.push_back(registration->name);
   }
   const std::string hint = detail::nearest(name, valid);
-  throw InputError(field, "= \"" + name + "\": unknown backend; valid: " + detail::join(valid) +
+  throw InputError(field, "= \"" + name + "\": unknown backend; valid: " + join(valid) +
                               (hint.empty() ? "" : "; did you mean \"" + hint + "\"?"));
 }
 

@@ -7,8 +7,8 @@
 
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"
+#include "contactqp/number_format.hpp"
 #include "norms.hpp"
-#include "number_format.hpp"
 #include "qp/friction_sets.hpp"
 
 namespace contactqp {

@@ -1,4 +1,4 @@
-#include "number_format.hpp"
+#include "contactqp/number_format.hpp"
 
 #include <cmath>
 #include <cstdarg>

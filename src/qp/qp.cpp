@@ -31,8 +31,8 @@ void validate_null_space(const QuadraticProgram& qp) {
     const double residual = (qp.K * r).cwiseAbs().maxCoeff();
     if (residual > 1e-8 * stiffness * size)
       throw InputError("qp.null_space", "column " + std::to_string(j) +
-                                            " is not in K's null space: |K r| = " + detail::format_value(residual) +
-                                            " against |K| |r| = " + detail::format_value(stiffness * size));
+                                            " is not in K's null space: |K r| = " + format_value(residual) +
+                                            " against |K| |r| = " + format_value(stiffness * size));
   }
 }
 

@@ -28,12 +28,6 @@ std::string lower(std::string text) {
 
 }  // namespace
 
-std::string join(const std::vector<std::string>& words) {
-  std::string text;
-  for (const auto& word : words) text += (text.empty() ? "" : ", ") + word;
-  return text;
-}
-
 std::string nearest(const std::string& word, const std::vector<std::string>& valid) {
   std::string best;
   size_t best_distance = std::max<size_t>(3, word.size() / 2) + 1;
@@ -53,3 +47,13 @@ std::string nearest(const std::string& word, const std::vector<std::string>& val
 }
 
 }  // namespace contactqp::detail
+
+namespace contactqp {
+
+std::string join(const std::vector<std::string>& words) {
+  std::string text;
+  for (const auto& word : words) text += (text.empty() ? "" : ", ") + word;
+  return text;
+}
+
+}  // namespace contactqp

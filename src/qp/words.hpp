@@ -5,10 +5,9 @@
 #include <string>
 #include <vector>
 
-namespace contactqp::detail {
+#include "contactqp/errors.hpp"  // join(): "a, b, c"
 
-// "a, b, c"
-std::string join(const std::vector<std::string>& words);
+namespace contactqp::detail {
 
 // The valid word closest to `word` by edit distance (case-insensitive; a prefix counts as one
 // edit), or "" when none is close.

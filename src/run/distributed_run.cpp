@@ -34,11 +34,6 @@ void refuse_steps_on_several_processes(Backend backend) {
                                 " backend on several processes (under mpirun) yet: run the scene on one process");
 }
 
-bool runs_distributed(const Scene& scene, const RunOptions& options) {
-  std::vector<DistributedRun> runs;
-  return taker(scene, options, runs) != nullptr;
-}
-
 RunReport run_scene_distributed(const Scene& scene, const RunOptions& options) {
   std::vector<DistributedRun> runs;
   const DistributedRun* run = taker(scene, options, runs);
@@ -47,3 +42,12 @@ RunReport run_scene_distributed(const Scene& scene, const RunOptions& options) {
 }
 
 }  // namespace contactqp::detail
+
+namespace contactqp {
+
+bool runs_distributed(const Scene& scene, const RunOptions& options) {
+  std::vector<detail::DistributedRun> runs;
+  return detail::taker(scene, options, runs) != nullptr;
+}
+
+}  // namespace contactqp

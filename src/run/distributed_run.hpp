@@ -18,10 +18,6 @@ struct DistributedRun {
 };
 void register_distributed_run(DistributedRun run);
 
-// Whether a registered distributed run takes this scene with these options (false when none is
-// built in: contactqp without PETSc).
-bool runs_distributed(const Scene& scene, const RunOptions& options);
-
 // The run of the first registered distributed run that takes it. Collective.
 RunReport run_scene_distributed(const Scene& scene, const RunOptions& options);
 

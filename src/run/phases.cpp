@@ -1,10 +1,10 @@
 // begin_phase() and checkpoint() (phases.hpp): agree_on_failure() with nothing to report, at
 // every boundary, so that a process that failed is met wherever the others are.
-#include "run/phases.hpp"
+#include "contactqp/phases.hpp"
 
 #include "contactqp/processes.hpp"
 
-namespace contactqp::detail {
+namespace contactqp {
 namespace {
 
 PhaseFaults& installed_faults() {
@@ -33,4 +33,4 @@ void begin_phase(const std::string& phase) {
   if (const PhaseFaults& faults = installed_faults(); faults.raise) faults.raise(phase);
 }
 
-}  // namespace contactqp::detail
+}  // namespace contactqp

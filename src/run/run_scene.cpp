@@ -4,10 +4,10 @@
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/estimate.hpp"
+#include "contactqp/phases.hpp"
 #include "contactqp/run.hpp"
 #include "contactqp/solve.hpp"
 #include "run/distributed_run.hpp"
-#include "run/phases.hpp"
 #include "run/problem_in_parts.hpp"
 
 namespace contactqp {
@@ -33,11 +33,11 @@ void add_error_estimate(const Scene& scene, const Model& model, const QuadraticP
 
 RunReport run_scene(const Scene& scene, const RunOptions& options) {
   // Under mpirun the petsc backend's run is distributed: no process holds the whole mesh.
-  if (detail::runs_distributed(scene, options)) return detail::run_scene_distributed(scene, options);
+  if (runs_distributed(scene, options)) return detail::run_scene_distributed(scene, options);
   Stopwatch total;
   validate_options(scene.solver);  // backend options too, before the mesh is built
   const auto phase = [&options](const char* name) {
-    detail::begin_phase(name);  // where the processes of a run under mpirun agree that none failed
+    begin_phase(name);  // where the processes of a run under mpirun agree that none failed
     if (options.on_phase) options.on_phase(name);
   };
 
@@ -133,14 +133,12 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   if (report.contact.penetrating_non_candidates > 0 && !report.no_contact)
     report.warnings.push_back(std::to_string(report.contact.penetrating_non_candidates) +
                               " boundary nodes outside the candidate set penetrate an obstacle (by up to " +
-                              detail::format_value(report.contact.max_non_candidate_penetration) +
-                              "); raise contact.max_gap");
+                              format_value(report.contact.max_non_candidate_penetration) + "); raise contact.max_gap");
   for (const PairContact& pair : report.pairs)
     if (pair.slipped_nodes > 0 && !report.no_contact)
       report.warnings.push_back(std::to_string(pair.slipped_nodes) + " loaded nodes of " + pair.node_side +
                                 " slid off the faces of " + pair.face_side +
-                                " their rows were linearised on (tangential slip up to " +
-                                detail::format_value(pair.max_slip) +
+                                " their rows were linearised on (tangential slip up to " + format_value(pair.max_slip) +
                                 "); the small-slip rows are then inexact: refine, or shorten the load step");
   // "total" is the whole run: the backend's own total stays under its name in the registry.
   Timings timings;

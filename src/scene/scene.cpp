@@ -64,7 +64,7 @@ Material read_material(JsonObject material) {
   // The largest entry of D, E(1 − ν)/((1 + ν)(1 − 2ν)), and the bulk modulus must be numbers.
   const double nu = m.nu, stiffest = m.E / ((1 + nu) * (1 - 2 * nu)) * std::max(1.0, 1 - nu);
   require(std::isfinite(stiffest) && std::isfinite(m.E / (3 * (1 - 2 * nu))), E_path, m.E,
-          "overflows double precision in the elasticity matrix with " + nu_path + " = " + detail::format_value(nu) +
+          "overflows double precision in the elasticity matrix with " + nu_path + " = " + format_value(nu) +
               "; use other units");
   material.finish();
   return m;

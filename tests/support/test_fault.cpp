@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "contactqp/errors.hpp"
+#include "contactqp/phases.hpp"
 #include "contactqp/processes.hpp"
-#include "run/phases.hpp"
 
 namespace contactqp::detail {
 namespace {

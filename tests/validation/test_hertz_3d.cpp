@@ -101,7 +101,7 @@ TEST_CASE("3D units: E × 1e±9 and lengths × 1e±3 give the same scaled answer
   const double E = GENERATE(1e9, 1e-9);
   const double L = GENERATE(1e3, 1e-3);
   CAPTURE(E, L);
-  auto text = [](double x) { return detail::format_value(x); };
+  auto text = [](double x) { return format_value(x); };
   const std::string patch = R"({"material": {"E": )" + text(E) + R"(}, "body": {"radius": )" + text(L) +
                             R"(, "mesh": {"size": )" + text(0.2 * L) + R"(, "contact_size": )" + text(0.03 * L) +
                             R"(, "order": 1}}, "load": {"value": [null, null, )" + text(-0.01 * L) + "]}" + solver +

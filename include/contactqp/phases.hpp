@@ -14,7 +14,7 @@
 #include <exception>
 #include <string>
 
-namespace contactqp::detail {
+namespace contactqp {
 
 // Thrown on a process that learns at a boundary that another process failed. main() ends
 // with `status` and says nothing: the process that failed printed the line. No agreement
@@ -55,4 +55,4 @@ struct PhaseFaults {
 };
 void install_phase_faults(const PhaseFaults& faults);
 
-}  // namespace contactqp::detail
+}  // namespace contactqp

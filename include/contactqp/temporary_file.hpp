@@ -4,7 +4,7 @@
 
 #include <string>
 
-namespace contactqp::detail {
+namespace contactqp {
 
 // A new file beside `target`, named .TARGET.HOST-PID.XXXXXX + suffix (hidden, unique, and
 // telling which process writes it), created 0644. commit() flushes it to disk and renames it
@@ -33,4 +33,4 @@ class TemporaryFile {
 // Removes the temporary files of `target` (with `suffix`) left by writers that are gone.
 void remove_abandoned_temporaries(const std::string& target, const std::string& suffix = "");
 
-}  // namespace contactqp::detail
+}  // namespace contactqp
