@@ -2,12 +2,12 @@
 #include "gmsh_plugin.hpp"
 
 #include <dlfcn.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
 #include <stdexcept>
+#include <vector>
 
 #include "contactqp/mesh_file.hpp"
 #include "contactqp/temporary_file.hpp"
