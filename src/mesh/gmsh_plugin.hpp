@@ -1,4 +1,4 @@
-// Gmsh, loaded when a run first meshes with it. Gmsh and what it links (OpenCASCADE, FLTK, 90
+// Gmsh, loaded when a run first meshes with it. Gmsh and what it links (OpenCASCADE, FLTK, 73
 // shared libraries) took 0.16 s of every start of the program, also of the runs that never
 // mesh: --version, a scene refused for a bad key, a .msh body, a QP solved from Python. So the
 // code that calls Gmsh is a plugin, libcontactqp_gmsh.so, opened with dlopen on first use;
