@@ -3,7 +3,7 @@
 // never a partial one — and the next run leaves no temporary file beside it. The test watches
 // the output directory with inotify and kills the run the moment its temporary file has
 // received its first piece (src/io/atomic_file.cpp writes in pieces of 1 MiB), so the kill
-// lands inside the write, however loaded the machine (up to three tries). About 4 s.
+// lands inside the write, however loaded the machine (up to five tries). About 4 s.
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
@@ -106,7 +106,7 @@ TEST_CASE("a run killed while it writes its ParaView file leaves the previous fi
   std::ofstream(out) << previous;
   const std::vector<std::string> arguments = {CONTACTQP_CLI, "solve", scene, "--no-contact", "--quiet", "--vtu", out};
   int killed_inside = 0;
-  for (int attempt = 0; attempt < 3 && killed_inside == 0; ++attempt) {
+  for (int attempt = 0; attempt < 5 && killed_inside == 0; ++attempt) {
     const bool killed = kill_at_first_write(arguments, directory.path(""), ".out.vtu.");
     const std::string now = read_text(out);
     const std::vector<std::string> left = temporaries_of(directory.path(""), "out.vtu");
@@ -114,11 +114,13 @@ TEST_CASE("a run killed while it writes its ParaView file leaves the previous fi
     // Never a partial file: the previous one, or (killed after the rename) the complete new one.
     CHECK((now == previous || now == complete));
     if (killed && !left.empty()) {
-      // Killed inside the write: the rename had not happened, so the previous file stands.
-      ++killed_inside;
+      // Killed before the rename: the previous file stands. Inside the write when the temporary
+      // is short; on a loaded machine the kill can land after the last piece and before the
+      // rename (a complete temporary, seen once in CI): the file still stands, try again.
       CHECK(now == previous);
       const auto size = std::filesystem::file_size(directory.path(left.front()));
-      CHECK(size < complete.size());
+      CHECK(size <= complete.size());
+      if (size < complete.size()) ++killed_inside;
     }
   }
   CHECK(killed_inside >= 1);
