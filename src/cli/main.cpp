@@ -66,8 +66,9 @@ int main(int argc, char** argv) {
   const contactqp::AgreedFailure agreed =
       contactqp::agree_on_failure(exit_status, error, contactqp::failed_process_grace_seconds());
   // The first process with an error speaks for the run, naming itself when not every one failed.
+  // In one write: under mpirun another process's output must not land inside the line.
   if (!error.empty() && agreed.process == contactqp::process_rank())
-    std::cerr << "contactqp: error: " << error
-              << (agreed.everywhere ? std::string() : " (on rank " + std::to_string(agreed.process) + ")") << "\n";
+    std::cerr << "contactqp: error: " + error +
+                     (agreed.everywhere ? std::string() : " (on rank " + std::to_string(agreed.process) + ")") + "\n";
   return agreed.status;
 }

@@ -120,9 +120,12 @@ AgreedFailure mpi_agree_on_failure(int status, const std::string& error, double 
     if (done) break;
     const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!error.empty() && waited > timeout_seconds) {
-      // The others are stuck where this rank left them: the last resort.
-      std::cerr << "contactqp: error: " << error << " (on rank " << rank << "; the other ranks did not finish)\n"
-                << std::flush;
+      // The others are stuck where this rank left them: the last resort. The line goes out in one
+      // write, before MPI_Abort: written in pieces, mpirun's own abort notice once landed between
+      // them.
+      const std::string line =
+          "contactqp: error: " + error + " (on rank " + std::to_string(rank) + "; the other ranks did not finish)\n";
+      std::cerr << line << std::flush;
       MPI_Abort(MPI_COMM_WORLD, status != 0 ? status : 1);
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(error.empty() ? 1 : 10));
