@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "backends.hpp"
@@ -264,17 +265,75 @@ std::shared_ptr<const LinearSolver> generalised_inverse(const SparseMatrix& K, c
   return std::make_shared<GeneralisedInverse>(make_linear_solver(K_reduced, reduced), keep);
 }
 
+namespace {
+
+// Gross slip: a free motion that only friction holds (no normal row stops it), loaded along it
+// by more than friction can hold (Q > μP: no equilibrium; the springs of the proximal steps carry
+// the excess and their anchors move by it over ε every step). `moved` is the anchors' last move
+// on F; its motion r = R c (R_F c = moved) is checked: its drive rᵀ(f − Bᵀλ) against friction's
+// most along it, Σ_i bound_i ‖(T r)_i‖ (bound μ_i λ_i, or Tresca's threshold), at the last λ.
+// The message and r (unit length) when the drive exceeds it; nothing otherwise.
+std::optional<std::string> gross_slip(const QuadraticProgram& qp, const Eigen::MatrixXd& R,
+                                      const std::vector<int>& fixed, const Eigen::VectorXd& moved,
+                                      const SolveResult& result, Eigen::VectorXd& direction) {
+  const FrictionBlock& friction = qp.friction;
+  if (friction.empty() || R.cols() == 0 || !(moved.cwiseAbs().maxCoeff() > 0) || result.lambda.size() != qp.B.rows() ||
+      friction.T.rows() == 0)
+    return std::nullopt;
+  // The motions no normal row sees (B R z = 0), and of them the one nearest the anchors' move.
+  Eigen::MatrixXd unseen = Eigen::MatrixXd::Identity(R.cols(), R.cols());
+  if (qp.B.rows() > 0) {
+    const Eigen::MatrixXd BR = qp.B * R;
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(BR, Eigen::ComputeFullV);
+    long rank = 0;
+    for (long j = 0; j < svd.singularValues().size(); ++j) rank += svd.singularValues()[j] > 1e-9 * std::sqrt(R.rows());
+    unseen = svd.matrixV().rightCols(R.cols() - rank);
+  }
+  if (unseen.cols() == 0) return std::nullopt;
+  const Eigen::MatrixXd R0 = R * unseen;
+  Eigen::MatrixXd R0_F(static_cast<long>(fixed.size()), R0.cols());
+  for (size_t j = 0; j < fixed.size(); ++j) R0_F.row(static_cast<long>(j)) = R0.row(fixed[j]);
+  Eigen::VectorXd r = R0 * R0_F.colPivHouseholderQr().solve(moved);
+  if (!(r.norm() > 0)) return std::nullopt;
+  r /= r.norm();
+  r /= r.cwiseAbs().maxCoeff();  // a unit motion (a translation by 1): drive and most are forces
+  const double drive = r.dot(qp.f - qp.B.transpose() * result.lambda);
+  const Eigen::VectorXd Tr = friction.T * r;
+  const int d = friction.n_directions;
+  double most = 0;
+  for (long i = 0; i < qp.B.rows(); ++i) {
+    const double bound =
+        friction.law == FrictionLaw::Coulomb ? friction.coefficient[i] * result.lambda[i] : friction.threshold[i];
+    most += std::max(0.0, bound) * Tr.segment(i * d, d).norm();
+  }
+  if (!(drive > most * (1 + 1e-6)) || !(drive > 1e-12 * qp.f.cwiseAbs().maxCoeff())) return std::nullopt;
+  direction = r / r.norm();
+  return "unbounded: gross slip: the load along a free motion that only friction holds (" + short_number(drive) +
+         ") exceeds the most friction holds along it (" + short_number(most) +
+         (friction.law == FrictionLaw::Coulomb ? ", the coefficient times the normal forces)"
+                                               : ", the Tresca thresholds)");
+}
+
+}  // namespace
+
 SolveResult solve_with_free_modes(const QuadraticProgram& qp, const Eigen::MatrixXd& R, const SolveOptions& options,
                                   const DefiniteSolve& run) {
   Stopwatch clock;
   const std::vector<int> fixed = fixing_dofs(R);
   const int n = qp.n_dofs();
 
-  // ε: kProximalRelative of K's diagonal at the fixing DOFs (of ‖K‖∞ where that is zero; 1 when K = 0,
-  // where any ε gives the same steps up to the scaling solve() applies).
-  double diagonal = 0;
-  for (int j : fixed) diagonal += std::abs(qp.K.coeff(j, j));
-  diagonal /= std::max<double>(1.0, static_cast<double>(fixed.size()));
+  // ε: kProximalRelative of K's diagonal where the free modes move, Σ R_j² K_jj / Σ R_j² (of ‖K‖∞
+  // where that is zero; 1 when K = 0, where any ε gives the same steps up to the scaling solve()
+  // applies). Not the diagonal at F alone: a DOF that a whole rigid surface shares (model.hpp's
+  // RigidSurface) may be picked, and its diagonal is the surface's — Hertz by force on a surface
+  // turned by 30° then did not settle in 9 steps (5 with this mean; docs/extremes.md).
+  double diagonal = 0, weight = 0;
+  for (long j = 0; j < qp.K.outerSize(); ++j) {
+    const double r2 = R.row(j).squaredNorm();
+    diagonal += r2 * std::abs(qp.K.coeff(j, j));
+    weight += r2;
+  }
+  diagonal = weight > 0 ? diagonal / weight : 0.0;
   double epsilon = kProximalRelative * diagonal;
   if (!(epsilon > 0)) epsilon = kProximalRelative * infinity_norm(qp.K);
   if (!(epsilon > 0) || !std::isfinite(epsilon)) epsilon = 1.0;
@@ -306,8 +365,9 @@ SolveResult solve_with_free_modes(const QuadraticProgram& qp, const Eigen::Matri
   // As many differences as free modes: more would fit the map's linear model in k dimensions
   // with stale steps of an earlier active set.
   AndersonMixing mixing(std::min<int>(kAndersonMemory, std::max<int>(1, static_cast<int>(R.cols()))));
-  int steps = 0, iterations = 0, stalled = 0;
+  int steps = 0, iterations = 0, stalled = 0, softenings = 0;
   double last_change = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd last_move;  // the anchors' last move on F
   std::string why;
   while (true) {
     inner.f = qp.f;
@@ -324,7 +384,8 @@ SolveResult solve_with_free_modes(const QuadraticProgram& qp, const Eigen::Matri
     }
     if (meets_tolerance(certificate, options.tol)) break;
     const Eigen::VectorXd moved = at(result.u, fixed);
-    const double change = (moved - anchor).cwiseAbs().maxCoeff();
+    last_move = moved - anchor;
+    const double change = last_move.cwiseAbs().maxCoeff();
     if (!(change > 0)) {
       why = "the proximal steps reached a fixed point whose certificate shows relative KKT residual " +
             short_number(certificate.kkt_max()) + " (the last step: " + result.message + ")";
@@ -332,6 +393,24 @@ SolveResult solve_with_free_modes(const QuadraticProgram& qp, const Eigen::Matri
     }
     // A free motion the load drives and no row stops moves by f/ε every step: no contraction.
     stalled = change > 0.9 * last_change ? stalled + 1 : 0;
+    // A step contracts the error by about ε/(ε + c), c the stiffness with which the contacts
+    // hold the motion — small for a body friction holds near gross slip (Q → μP: the stick zone
+    // shrinks). There the steps still contract, slowly: softer springs (ε / 10, a new factor of
+    // K_ε, up to kProximalSoftenings times) unless the load beyond friction is what moves them.
+    Eigen::VectorXd ignored;
+    if (stalled >= 3 && softenings < kProximalSoftenings && steps < kProximalMaxSteps &&
+        !gross_slip(qp, R, fixed, last_move, result, ignored)) {
+      for (int j : fixed) inner.K.coeffRef(j, j) -= 0.9 * epsilon;
+      epsilon *= 0.1;
+      ++softenings;
+      stalled = 0;
+      last_change = std::numeric_limits<double>::infinity();
+      mixing = AndersonMixing(std::min<int>(kAndersonMemory, std::max<int>(1, static_cast<int>(R.cols()))));
+      anchor = moved;
+      inner_options.K_factor = nullptr;
+      inner_options.initial = {result.u, result.lambda, result.lambda_t};
+      continue;
+    }
     if (stalled >= 3 || steps >= kProximalMaxSteps) {
       why = "the free modes did not settle in " + std::to_string(steps) + " proximal steps (the last moved " +
             short_number(change) + ")";
@@ -348,6 +427,7 @@ SolveResult solve_with_free_modes(const QuadraticProgram& qp, const Eigen::Matri
   result.iterations = iterations;
   result.certificate = certificate;
   const bool certified = why.empty();
+  std::optional<std::string> slip;
   int unseen = 0;
   if (certified) unseen = take_smallest_norm(qp, R, *K_plus, options.tol, result);
   result.timings = timings;
@@ -365,6 +445,11 @@ SolveResult solve_with_free_modes(const QuadraticProgram& qp, const Eigen::Matri
                                        " of them no active row sees nor the load drives: u takes the smallest norm "
                                        "along them"
                                  : "");
+  } else if (Eigen::VectorXd slide; result.status == Status::Converged && last_move.size() > 0 &&
+                                    (slip = gross_slip(qp, R, fixed, last_move, result, slide))) {
+    result.status = Status::Unbounded;
+    result.recession = slide;
+    result.message = *slip;
   } else {
     if (result.status == Status::Converged) result.status = Status::MaxIterations;
     result.message = modes + ": " + why;

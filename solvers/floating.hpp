@@ -53,7 +53,8 @@ std::shared_ptr<const LinearSolver> generalised_inverse(const SparseMatrix& K, c
 // dual backends feel most: uzawa's ρ falls with 1/λ_max(B K_ε⁻¹ Bᵀ) ~ ε.
 inline constexpr double kProximalRelative = 0.1;
 inline constexpr int kProximalMaxSteps = 50;
-inline constexpr int kAndersonMemory = 6;  // at most; min(6, k) differences are kept
+inline constexpr int kAndersonMemory = 6;      // at most; min(6, k) differences are kept
+inline constexpr int kProximalSoftenings = 4;  // ε / 10 each time the steps stall (near gross slip)
 
 // One backend run on a definite QP (solve.cpp's run_backend with that QP's own K).
 using DefiniteSolve = std::function<SolveResult(const QuadraticProgram& qp, const SolveOptions& options)>;

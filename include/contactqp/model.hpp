@@ -74,6 +74,17 @@ struct FreeMotion {
   int part = 0;                                      // the connected part of the mesh it moves
 };
 
+// A boundary that a force load (RigidForceLoad) moves as one rigid surface along one component:
+// its nodes' DOFs of that component share one column of K (free_index maps them all to it),
+// so K, B and f there are the sums over the surface (TᵀKT, BT, Tᵀf for the tie u = T u').
+struct RigidSurface {
+  int load = -1;           // its entry in scene.loads
+  int component = 0;       // along the DOF frame's column (the scene's own axis)
+  int column = -1;         // the shared free DOF
+  double force = 0;        // the whole body's resultant along it, at the current load step
+  std::vector<int> nodes;  // ascending
+};
+
 struct Model {
   // The scene as solved, in the global frame: its transform is applied (obstacles and load
   // vectors rotated) and reset; `rotation` remembers it (a rotation about z in 2D).
@@ -89,6 +100,9 @@ struct Model {
   Eigen::VectorXd prescribed;           // dim·n_nodes: the prescribed displacement of each prescribed DOF, 0 elsewhere
   std::vector<int> frame_of_node;       // n_nodes: index into `frames`, −1 for the global axes; empty when all are
   std::vector<Eigen::MatrixXd> frames;  // dim × dim, orthogonal; column c is the direction of DOF component c
+  // Force loads on rigid surfaces: one entry per load and tied component (ascending load, then
+  // component). Several DOFs then map to one free index: it is injective only when this is empty.
+  std::vector<RigidSurface> rigid_surfaces;
   // dim·n_nodes, global axes: consistent nodal forces of the force loads (traction, pressure,
   // gravity, point), for the body's thickness in 2D (force).
   Eigen::VectorXd nodal_force;

@@ -248,10 +248,16 @@ MindlinComparison compare_with_mindlin(const Model& model, const FrictionFields&
 void summarize_friction(const Model& model, const FrictionFields& fields, ContactSummary& contact,
                         std::vector<PairContact>& pairs);
 
+// What a support pushes the body with (a displacement load), or what a rigid surface carries
+// and how far it moved (a force load, RigidForceLoad).
 struct Reaction {
   std::string load;                                 // the load's field path, e.g. "load[0]"
   std::string boundary;                             // its boundary
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // z = 0 in 2D
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // global axes, the whole body's; z = 0 in 2D
+  // A force load: the surface's displacement along each component it ties (the scene's own
+  // axes, as the load's value), none along a free one; none at all for a displacement load.
+  std::optional<double> displacement[3];
+  bool rigid_surface() const { return displacement[0] || displacement[1] || displacement[2]; }
 };
 std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
                                 const Eigen::VectorXd& lambda, const Eigen::VectorXd& lambda_t = Eigen::VectorXd());

@@ -99,6 +99,16 @@ struct GravityLoad {   // density × g on the body, or on a region of a mesh bod
   Eigen::Vector3d g = Eigen::Vector3d::Zero();
   std::string region;  // a named region of a mesh body; "" for the whole body
 };
+// A resultant force on a boundary that moves as one rigid surface (docs/scene.md, "Force on a
+// rigid surface"): along each given component the boundary's nodes share one unknown
+// displacement, and the surface carries that component of the force; a null component leaves
+// each node free, as a displacement load's null does. The force is the whole body's (its
+// mirror images included, as the report's contact force counts them), for the thickness in 2D.
+// Components stay along the scene's own axes under its transform, as a displacement's do.
+struct RigidForceLoad {
+  std::string boundary;
+  std::optional<double> value[3];
+};
 struct PointLoad {                    // a force (for the thickness) at the node nearest a point
   std::optional<Eigen::Vector3d> at;  // the location (the nearest node takes the force)
   std::string point;                  // a named physical point of a mesh body instead of `at`
@@ -108,9 +118,9 @@ struct PointLoad {                    // a force (for the thickness) at the node
 struct LoadSpec {
   std::string path;  // the load's field path in the scene ("load", "load[2]"), for messages
   std::string name;  // "name": what load steps call it (scene.steps); "" for a load acting in full in every step
-  std::variant<DisplacementLoad, TractionLoad, PressureLoad, GravityLoad, PointLoad> kind;
+  std::variant<DisplacementLoad, TractionLoad, PressureLoad, GravityLoad, PointLoad, RigidForceLoad> kind;
 
-  std::string type() const;  // "displacement", "traction", "pressure", "gravity", "point"
+  std::string type() const;  // "displacement", "traction", "pressure", "gravity", "point", "force"
   template <class Kind>
   const Kind* as() const {
     return std::get_if<Kind>(&kind);
@@ -124,7 +134,7 @@ struct LoadSpec {
     return std::holds_alternative<Kind>(kind);
   }
   bool is_force() const { return !is<DisplacementLoad>(); }
-  // The boundary a displacement, traction or pressure acts on; nullptr for gravity and a point force.
+  // The boundary a displacement, traction, pressure or rigid force acts on; nullptr for gravity and a point force.
   const std::string* boundary() const;
   std::string* boundary();
 };

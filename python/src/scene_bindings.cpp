@@ -59,6 +59,12 @@ py::list reactions_list(const std::vector<Reaction>& reactions, int dim) {
     entry["load"] = r.load;
     entry["boundary"] = r.boundary;
     entry["force"] = py::cast(Eigen::VectorXd(r.force.head(dim)));
+    if (r.rigid_surface()) {  // a force load: how far its rigid surface moved (None: free)
+      py::list moved;
+      for (int c = 0; c < dim; ++c)
+        moved.append(r.displacement[c] ? py::object(py::float_(*r.displacement[c])) : py::none());
+      entry["displacement"] = moved;
+    }
     list.append(entry);
   }
   return list;

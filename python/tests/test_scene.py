@@ -55,6 +55,17 @@ def test_attributes_are_numpy_and_consistent():
     np.testing.assert_allclose(again.u, r.u, rtol=0, atol=1e-14 * np.abs(r.u).max())
 
 
+def test_a_force_on_a_rigid_surface_reports_how_far_the_surface_moved():
+    # scenes/hertz-force.json: the force hertz.json's push of 0.016 gives, so the cut moves by it.
+    r = contactqp.solve_scene(source_path("scenes/hertz-force.json"))
+    assert r.status == contactqp.Status.CONVERGED
+    (surface,) = r.reactions
+    assert surface["boundary"] == "top"
+    assert surface["displacement"][0] is None  # free at each node, as the push leaves it
+    assert surface["displacement"][1] == pytest.approx(-0.016, rel=1e-6)
+    assert -surface["force"][1] == pytest.approx(r.contact.total_force, rel=1e-8)
+
+
 def test_csv_and_vtu_equal_the_cli_files(tmp_path):
     csv, vtu = tmp_path / "p.csv", tmp_path / "m.vtu"
     run = subprocess.run([CLI, "solve", HERTZ, "--backend", "active_set", "--csv", str(csv), "--vtu", str(vtu)],

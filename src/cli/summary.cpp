@@ -181,6 +181,16 @@ std::string summary_table(const RunReport& report) {
   for (const Reaction& r : report.reactions) {
     // + 0.0 turns an exact −0 (a component that is zero by symmetry) into 0, which prints as "0".
     const Eigen::Vector3d f = r.force.array() + 0.0;
+    if (r.rigid_surface()) {  // a force load: what its rigid surface carries and how far it moved
+      std::string moved;
+      for (int c = 0; c < model.dim; ++c)
+        moved += (c ? ", " : "") + (r.displacement[c] ? format("%.6g", *r.displacement[c] + 0.0) : std::string("free"));
+      out += format(
+          "  rigid force  %s on \"%s\": (%s), moved by (%s)\n", r.load.c_str(), r.boundary.c_str(),
+          solid ? format("%.6g, %.6g, %.6g", f.x(), f.y(), f.z()).c_str() : format("%.6g, %.6g", f.x(), f.y()).c_str(),
+          moved.c_str());
+      continue;
+    }
     out +=
         solid ? format("  reaction     %s on \"%s\": (%.6g, %.6g, %.6g)\n", r.load.c_str(), r.boundary.c_str(), f.x(),
                        f.y(), f.z())

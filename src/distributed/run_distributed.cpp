@@ -109,6 +109,8 @@ bool takes_distributed_run(const Scene& scene, const RunOptions& options) {
   // path solves on its free motions (docs/extremes.md) and the distributed model refuses.
   const auto displaced = [](const LoadSpec& load) { return load.is<DisplacementLoad>(); };
   if (std::none_of(scene.loads.begin(), scene.loads.end(), displaced)) return false;
+  const auto rigid = [](const LoadSpec& load) { return load.is<RigidForceLoad>(); };
+  if (std::any_of(scene.loads.begin(), scene.loads.end(), rigid)) return false;
   // The one-process path's own methods (method=tao, hierarchy=fresh), which pdas_options() refuses.
   for (const auto& [key, value] : options_for(Backend::Petsc, scene.solver.backend_options))
     if ((key == "method" && value != "pdas") || (key == "hierarchy" && value != "kept")) return false;
@@ -121,6 +123,11 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
   validate_options(scene.solver);
   // What the distributed path does not model yet, refused as the one-process path refuses it.
   if (!scene.steps.empty()) refuse_steps_on_several_processes(scene.solver.backend);
+  for (const LoadSpec& load : scene.loads)
+    if (load.is<RigidForceLoad>())
+      throw InputError(load.path + ".type",
+                       "= \"force\": a distributed run (mpirun) does not model a rigid surface "
+                       "yet; run it on one process");
   if (scene.friction_law() != FrictionLaw::None) {
     const ProblemKind kind = scene.friction_law() == FrictionLaw::Tresca ? ProblemKind::Tresca : ProblemKind::Coulomb;
     std::string others;

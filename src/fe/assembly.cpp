@@ -7,6 +7,7 @@
 #include "contactqp/errors.hpp"
 #include "contactqp/model.hpp"
 #include "model/coarse_space.hpp"
+#include "model/model_parts.hpp"
 #include "model/rigid_body_modes.hpp"
 #include "stiffness_matrix.hpp"
 
@@ -49,6 +50,8 @@ void add_force_loads(const Model& model, Eigen::VectorXd& f) {
     for (int c = 0; c < dim; ++c)
       if (model.free_index[dim * node + c] >= 0) f[model.free_index[dim * node + c]] += force[c];
   }
+  // A rigid surface's force acts on its one column (Tᵀf: the sum over its nodes is the force).
+  for (const RigidSurface& surface : model.rigid_surfaces) f[surface.column] += rigid_surface_share(model, surface);
 }
 
 void refuse_unrepresentable(const Model& model, double largest_k, bool k_finite, double largest_f, bool f_finite) {
@@ -120,6 +123,9 @@ void apply_load_step(Model& model, QuadraticProgram& qp, const std::vector<doubl
   }
   model.prescribed = prescribed;
   model.nodal_force = nodal_force;
+  for (RigidSurface& surface : model.rigid_surfaces)
+    surface.force =
+        factors[surface.load] * *model.scene.loads[surface.load].as<RigidForceLoad>()->value[surface.component];
   qp.f = detail::prescribed_forces(model);
   detail::add_force_loads(model, qp.f);
   detail::add_contact_rows(model, qp);  // the same B; g with this step's prescribed values

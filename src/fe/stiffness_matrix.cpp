@@ -52,6 +52,38 @@ void build_pattern(const Model& model, const std::vector<char>& owned, Eigen::Sp
 
   K.resize(model.n_free, model.n_free);
   std::vector<int> neighbours;
+  if (!model.rigid_surfaces.empty()) {
+    // A rigid surface's DOFs share a column (model.hpp): its rows are those of all its nodes,
+    // and a node's rows no longer ascend with the DOF. Built column by column instead, sorted.
+    std::vector<std::vector<int>> rows_of_column(model.n_free);
+    for (int n = 0; n < n_nodes; ++n) {
+      if (free_of_node[n] == 0 || at.first[n] == at.first[n + 1]) continue;
+      neighbours_of(mesh, at, n, neighbours);
+      for (int c = 0; c < dim; ++c) {
+        const int column = model.free_index[dim * n + c];
+        if (column < 0) continue;
+        for (int m : neighbours)
+          for (int r = 0; r < dim; ++r)
+            if (model.free_index[dim * m + r] >= 0) rows_of_column[column].push_back(model.free_index[dim * m + r]);
+      }
+    }
+    std::size_t total = 0;
+    for (std::vector<int>& rows : rows_of_column) {
+      std::sort(rows.begin(), rows.end());
+      rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+      total += rows.size();
+    }
+    K.resizeNonZeros(static_cast<Eigen::Index>(total));
+    std::fill(K.valuePtr(), K.valuePtr() + total, 0.0);
+    std::size_t at_entry = 0;
+    for (int column = 0; column < model.n_free; ++column) {
+      K.outerIndexPtr()[column] = static_cast<int>(at_entry);
+      std::copy(rows_of_column[column].begin(), rows_of_column[column].end(), K.innerIndexPtr() + at_entry);
+      at_entry += rows_of_column[column].size();
+    }
+    K.outerIndexPtr()[model.n_free] = static_cast<int>(at_entry);
+    return;
+  }
   std::vector<std::vector<int>> rows_of_node(n_nodes);
   std::size_t nnz = 0;
   for (int n = 0; n < n_nodes; ++n) {

@@ -148,8 +148,15 @@ json timings_json(const Timings& timings) {
 
 json reactions_json(const std::vector<Reaction>& reactions, int dim) {
   json supports = json::array();
-  for (const Reaction& r : reactions)
-    supports.push_back({{"load", r.load}, {"boundary", r.boundary}, {"force", vector_json(r.force, dim)}});
+  for (const Reaction& r : reactions) {
+    json entry = {{"load", r.load}, {"boundary", r.boundary}, {"force", vector_json(r.force, dim)}};
+    if (r.rigid_surface()) {  // a force load: how far its rigid surface moved (null: free)
+      json moved = json::array();
+      for (int c = 0; c < dim; ++c) moved.push_back(r.displacement[c] ? number(*r.displacement[c]) : json(nullptr));
+      entry["displacement"] = moved;
+    }
+    supports.push_back(entry);
+  }
   return supports;
 }
 

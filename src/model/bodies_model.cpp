@@ -206,6 +206,12 @@ void append(Model& model, const Model& part, const SceneBody& body, const Scene&
   model.element_body.insert(model.element_body.end(), part.mesh.n_elements(),
                             static_cast<int>(model.bodies.size()) - 1);
   for (int index : part.free_index) model.free_index.push_back(index < 0 ? -1 : index + model.n_free);
+  for (RigidSurface surface : part.rigid_surfaces) {  // the body's loads follow the earlier bodies' in scene.loads
+    surface.load += static_cast<int>(model.scene.loads.size());
+    surface.column += model.n_free;
+    for (int& node : surface.nodes) node += node_offset;
+    model.rigid_surfaces.push_back(std::move(surface));
+  }
   model.n_free += part.n_free;
   auto concatenate = [](Eigen::VectorXd& to, const Eigen::VectorXd& from) {
     Eigen::VectorXd joined(to.size() + from.size());
@@ -349,7 +355,8 @@ Model build_bodies_model(const Scene& scene, const BuildOptions& options) {
   // obstacles, or with the other bodies through the pairs' rows), or refused naming the body when
   // its load drives one that no row sees (docs/extremes.md). Bodies have no transform: the
   // scene's frame is the global one.
-  const Eigen::MatrixXd free_motions = motions_held_by_contact(model, [&] { return model.nodal_force; });
+  const Eigen::MatrixXd free_motions =
+      motions_held_by_contact(model, [&] { return Eigen::VectorXd(model.nodal_force + rigid_surface_forces(model)); });
   if (free_motions.cols() > 0) model.free_modes = free_modes_on_dofs(model, free_motions);
   // Each load's nodal forces over the whole mesh: zero outside its body's block.
   for (size_t l = 0, b = 0, in_body = 0; l < model.load_shares.size(); ++l, ++in_body) {

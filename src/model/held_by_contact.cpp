@@ -4,7 +4,9 @@
 // For each connected part with free motions m_1..m_k (rigid_motions.cpp), candidate row r sees
 // motion j by G_rj = −n_rᵀ m_j(x_r) (n_r the obstacle normal at its node; a pair's row
 // −nᵀ(u_i − Σ N_j u_j) sees the part through whichever of its nodes it holds) and the load drives it
-// by F_j = Σ_i f_iᵀ m_j(x_i). A combination that no row sees (G z = 0) can never be stopped:
+// by F_j = Σ_i f_iᵀ m_j(x_i); a frictional row's tangents t see it by tᵀm_j (the body is then
+// held by friction up to μP, which the solve checks). A combination that no row sees (G z = 0)
+// can never be stopped:
 // if the load drives it (Fᵀz ≠ 0) the scene is refused before any work, with the line
 // check_rigid_motions gives; if not (a frictionless ball's sideways translation) it stays a free
 // mode, which solve() fixes by its stated choice. Every free motion becomes a column of K's null
@@ -74,6 +76,21 @@ Eigen::MatrixXd motions_held_by_contact(Model& model, const std::function<Eigen:
         }
       }
       if (touches) rows.push_back(row);
+      // Friction holds what it can across the row (Q ≤ μP: the solve says whether it does):
+      // each tangent sees the motion as t·(u_i − Σ N_j u_j).
+      const FrictionSpec* friction = friction_of(model, candidate);
+      if (!touches || !friction || !(friction->coefficient > 0 || friction->threshold > 0)) continue;
+      for (const Eigen::Vector3d& t : row_tangents(model, candidate)) {
+        Eigen::RowVectorXd along = Eigen::RowVectorXd::Zero(k);
+        if (freedom.part[candidate.node] == part_index)
+          for (int j = 0; j < k; ++j) along[j] += t.dot(motion(j, candidate.node));
+        for (int f = 0; f < candidate.n_face_nodes; ++f) {
+          const int node = candidate.face_nodes[static_cast<size_t>(f)];
+          if (freedom.part[node] == part_index)
+            for (int j = 0; j < k; ++j) along[j] -= candidate.weights[static_cast<size_t>(f)] * t.dot(motion(j, node));
+        }
+        rows.push_back(along);
+      }
     }
     Eigen::MatrixXd G(static_cast<long>(rows.size()), k);
     for (size_t r = 0; r < rows.size(); ++r) G.row(static_cast<long>(r)) = rows[r];

@@ -127,8 +127,10 @@ Model build_model(const Scene& scene, const BuildOptions& options) {
   const std::vector<int> point_nodes = detail::point_load_nodes(scene, model.mesh, model.warnings);
   // Rigid motions the prescribed displacements leave free: held by the contacts, or refused
   // (in the scene's own axes, which the message names) when the load drives one no row sees.
-  const Eigen::MatrixXd free_motions = detail::motions_held_by_contact(
-      model, [&] { return detail::nodal_forces(model.scene, model.mesh, point_nodes); });
+  const Eigen::MatrixXd free_motions = detail::motions_held_by_contact(model, [&] {
+    return Eigen::VectorXd(detail::nodal_forces(model.scene, model.mesh, point_nodes) +
+                           detail::rigid_surface_forces(model));
+  });
 
   // Now turn the scene: nodes, obstacles and load vectors; prescribed components keep the
   // scene's axes through DOF frames.

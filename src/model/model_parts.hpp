@@ -46,6 +46,11 @@ void apply_displacement_conditions(Model& model, const Scene& local_scene, const
 using NodesOfBoundary = std::function<std::vector<int>(const std::string& boundary)>;
 void apply_displacement_conditions(Model& model, const Scene& local_scene, const Eigen::Matrix3d& rotation,
                                    const NodesOfBoundary& nodes_of);
+// The force a rigid surface carries on the modelled part (its whole-body force over the body's
+// symmetry copies), and all of them as nodal forces in DOF components (dim·n_nodes): each at
+// its surface's first node, since K and f see the surface's DOFs only through their one column.
+double rigid_surface_share(const Model& model, const RigidSurface& surface);
+Eigen::VectorXd rigid_surface_forces(const Model& model);
 
 // rigid_motions.cpp: InputError naming the free motions (translations, rotations about a
 // point in 2D or an axis in 3D) and what would hold them, unless the prescribed DOFs (in their DOF frames)

@@ -173,6 +173,21 @@ RigidFreedom rigid_freedom_3d(const Model& model) {
       normal[p] += row * row.transpose();
     }
   }
+  // A rigid surface moves its nodes alike along its component: a motion that moves two of them
+  // differently along it is held (a rotation that would tilt a surface pushed by a force).
+  for (const RigidSurface& surface : model.rigid_surfaces) {
+    const int first = surface.nodes.front(), p = part[first];
+    const double l = extent[p] > 0 ? extent[p] : 1.0;
+    const Eigen::Vector3d d = Eigen::Vector3d(dof_frame(model, first).col(surface.component));
+    const Eigen::Vector3d x0 = mesh.nodes[first] - freedom.parts[p].centre;
+    for (int node : surface.nodes) {
+      if (part[node] != p) continue;  // a surface over two parts ties them: each part's own rows suffice
+      const Eigen::Vector3d x = mesh.nodes[node] - freedom.parts[p].centre;
+      Eigen::Matrix<double, 6, 1> row;
+      row << Eigen::Vector3d::Zero(), (x - x0).cross(d) / l;
+      normal[p] += row * row.transpose();
+    }
+  }
   for (int p = 0; p < n_parts; ++p) {
     freedom.parts[p].extent = extent[p] > 0 ? extent[p] : 1.0;
     const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(normal[p]);
@@ -297,6 +312,18 @@ RigidFreedom rigid_freedom_2d(const Model& model) {
       if (model.free_index[2 * node + c] >= 0) continue;
       const Eigen::Vector2d d = frame.col(c);
       const Eigen::Vector3d row(d.x(), d.y(), (-d.x() * x.y() + d.y() * x.x()) / l);
+      normal[p] += row * row.transpose();
+    }
+  }
+  // A rigid surface moves its nodes alike along its component (as in 3D above).
+  for (const RigidSurface& surface : model.rigid_surfaces) {
+    const int first = surface.nodes.front(), p = part[first];
+    const double l = extent[p] > 0 ? extent[p] : 1.0;
+    const Eigen::Vector2d d = dof_frame(model, first).col(surface.component);
+    for (int node : surface.nodes) {
+      if (part[node] != p) continue;
+      const Eigen::Vector2d dx = mesh.nodes[node].head<2>() - mesh.nodes[first].head<2>();
+      const Eigen::Vector3d row(0.0, 0.0, (-d.x() * dx.y() + d.y() * dx.x()) / l);
       normal[p] += row * row.transpose();
     }
   }

@@ -5,6 +5,30 @@
 #include "contactqp/post.hpp"
 
 namespace contactqp {
+namespace {
+
+// The force loads' rigid surfaces: the force each carries (the load at this step) and how far
+// it moved, one entry per load, after the supports.
+std::vector<Reaction> rigid_surfaces(const Model& model, const Eigen::VectorXd& u) {
+  std::vector<Reaction> out;
+  for (size_t l = 0; l < model.scene.loads.size(); ++l) {
+    const RigidForceLoad* load = model.scene.loads[l].as<RigidForceLoad>();
+    if (!load) continue;
+    Reaction entry{model.scene.loads[l].path, load->boundary, Eigen::Vector3d::Zero(), {}};
+    Eigen::Vector3d along_axes = Eigen::Vector3d::Zero();  // the scene's own axes
+    for (const RigidSurface& surface : model.rigid_surfaces) {
+      if (surface.load != static_cast<int>(l)) continue;
+      along_axes[surface.component] = surface.force;
+      if (surface.column < u.size()) entry.displacement[surface.component] = u[surface.column];
+    }
+    entry.force = model.rotation * along_axes;
+    if (model.dim == 2) entry.force.z() = 0;
+    out.push_back(entry);
+  }
+  return out;
+}
+
+}  // namespace
 
 std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
                                 const Eigen::VectorXd& lambda, const Eigen::VectorXd& lambda_t) {
@@ -27,7 +51,7 @@ std::vector<Reaction> reactions(const Model& model, const Eigen::VectorXd& u, co
       for (int node : nodes_of(d->boundary)) prescribed[node] = 1;
       any = true;
     }
-  if (!any) return {};
+  if (!any) return rigid_surfaces(model, u);
   const Eigen::VectorXd displacement = full_displacement(model, u);
   const std::vector<ElementLaw> laws = element_laws(model);
   const int npe = mesh.nodes_per_element();
@@ -71,6 +95,7 @@ std::vector<Reaction> reactions(const Model& model, const Eigen::VectorXd& u, co
     reaction.force = whole_body_sum(model, reaction.force);
     out.push_back(reaction);
   }
+  for (Reaction& surface : rigid_surfaces(model, u)) out.push_back(std::move(surface));
   return out;
 }
 

@@ -87,11 +87,15 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   // A body only its contacts hold, which the load pulls away from them: name the motion.
   if (report.result.status == Status::Unbounded && report.result.recession.size() == model->n_free &&
       model->free_modes.cols() > 0) {
-    const std::string prefix = "unbounded: ";
+    const std::string prefix = "unbounded: ", slip = "unbounded: gross slip: ";
     const std::string& said = report.result.message;
-    const std::string why = said.compare(0, prefix.size(), prefix) == 0 ? said.substr(prefix.size()) : said;
-    report.result.message = prefix + "the body moves freely " + describe_free_motion(*model, report.result.recession) +
-                            ": the load pushes it away from every contact (" + why + ")";
+    const std::string motion = describe_free_motion(*model, report.result.recession);
+    if (said.compare(0, slip.size(), slip) == 0)  // a tangential load beyond what friction holds
+      report.result.message = slip + "the body slides " + motion + ": " + said.substr(slip.size());
+    else
+      report.result.message = prefix + "the body moves freely " + motion +
+                              ": the load pushes it away from every contact (" +
+                              (said.compare(0, prefix.size(), prefix) == 0 ? said.substr(prefix.size()) : said) + ")";
   }
 
   phase("certify");

@@ -1,5 +1,5 @@
-// One entry of the `load` section: prescribed displacement, traction, pressure, gravity, or
-// a point force.
+// One entry of the `load` section: prescribed displacement, traction, pressure, gravity, a
+// point force, or a force on a rigid surface.
 #include <algorithm>
 #include <type_traits>
 #include <utility>
@@ -11,17 +11,20 @@
 namespace contactqp::detail {
 namespace {
 
-const std::vector<std::string> kLoadTypes = {"displacement", "traction", "pressure", "gravity", "point"};
+const std::vector<std::string> kLoadTypes = {"displacement", "traction", "pressure", "gravity", "point", "force"};
 
-DisplacementLoad read_displacement(JsonObject& load, std::string boundary, int dim) {
-  DisplacementLoad spec;
+// "value": dim components, each a number or null (free); at least one a number. A displacement
+// prescribes them, a force on a rigid surface ties them.
+template <class Load>
+Load read_components(JsonObject& load, std::string boundary, int dim) {
+  Load spec;
   spec.boundary = std::move(boundary);
   const nlohmann::json& value = load.value("value");
   const std::string path = load.path_of("value");
+  const char* letter = std::is_same_v<Load, DisplacementLoad> ? "u" : "F";
   if (!value.is_array() || static_cast<int>(value.size()) != dim)
-    throw InputError(path, "= " + describe(value) +
-                               (dim == 2 ? ": must be [ux, uy], a component null when free"
-                                         : ": must be [ux, uy, uz], a component null when free"));
+    throw InputError(path, "= " + describe(value) + ": must be [" + letter + "x, " + letter + "y" +
+                               (dim == 2 ? "" : std::string(", ") + letter + "z") + "], a component null when free");
   bool any = false;
   for (int c = 0; c < dim; ++c)
     if (!value[c].is_null()) {
@@ -29,8 +32,10 @@ DisplacementLoad read_displacement(JsonObject& load, std::string boundary, int d
       any = true;
     }
   if (!any)
-    throw InputError(
-        path, std::string(dim == 2 ? "= [null, null]" : "= [null, null, null]") + ": prescribe at least one component");
+    throw InputError(path, std::string(dim == 2 ? "= [null, null]" : "= [null, null, null]") +
+                               (std::is_same_v<Load, DisplacementLoad>
+                                    ? ": prescribe at least one component"
+                                    : ": give at least one component of the force (null leaves a component free)"));
   return spec;
 }
 
@@ -80,12 +85,14 @@ LoadSpec read_load(JsonObject load, const BodySpec& body, int dim) {
   if (std::find(kLoadTypes.begin(), kLoadTypes.end(), type) == kLoadTypes.end())
     unknown_choice(load.path_of("type"), type, "load type", kLoadTypes);
   std::string boundary;
-  if (type == "displacement" || type == "traction" || type == "pressure") {
+  if (type == "displacement" || type == "traction" || type == "pressure" || type == "force") {
     boundary = load.string("boundary");
     require_boundary(boundary, body, load.path_of("boundary"));
   }
   if (type == "displacement") {
-    spec.kind = read_displacement(load, std::move(boundary), dim);
+    spec.kind = read_components<DisplacementLoad>(load, std::move(boundary), dim);
+  } else if (type == "force") {
+    spec.kind = read_components<RigidForceLoad>(load, std::move(boundary), dim);
   } else if (type == "traction") {
     spec.kind = TractionLoad{std::move(boundary), read_vector(load.value("value"), load.path_of("value"), dim)};
   } else if (type == "pressure") {
@@ -108,12 +115,13 @@ std::string LoadSpec::type() const {
   if (is<TractionLoad>()) return "traction";
   if (is<PressureLoad>()) return "pressure";
   if (is<GravityLoad>()) return "gravity";
+  if (is<RigidForceLoad>()) return "force";
   return "point";
 }
 
 namespace {
 
-// The boundary of a displacement, traction or pressure; nullptr for the other kinds.
+// The boundary of a displacement, traction, pressure or rigid force; nullptr for the other kinds.
 template <class Kinds>
 auto boundary_of(Kinds& kind) {
   using Pointer = std::conditional_t<std::is_const_v<Kinds>, const std::string*, std::string*>;

@@ -49,6 +49,7 @@ Format::Format() {
       {"displacement", {must("boundary"), must("value")}}, {"traction", {must("boundary"), must("value")}},
       {"pressure", {must("boundary"), must("value")}},     {"gravity", {must("density"), must("g"), {"region"}}},
       {"point", {must("value"), {"at"}, {"point"}}},  // "at" or "point"
+      {"force", {must("boundary"), must("value")}},
   };
 
   obstacle.keys = {must("type"), {"friction", &friction}};

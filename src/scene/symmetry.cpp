@@ -85,6 +85,12 @@ void check_symmetry(const Scene& scene) {
     for (const LoadSpec& load : scene.loads) {
       if (const auto* d = load.as<DisplacementLoad>(); d && d->value[c] && *d->value[c] != 0.0)
         broken(scene.body, load.path + " has u" + axis + " = " + format_value(*d->value[c]), plane);
+      // A rigid surface tied along the plane's normal would move its mirror image the other way.
+      if (const auto* r = load.as<RigidForceLoad>(); r && r->value[c])
+        broken(scene.body,
+               load.path + " ties the rigid surface along " + axis + " (F" + axis + " = " + format_value(*r->value[c]) +
+                   "; give null: the plane holds " + axis + ")",
+               plane);
       const Eigen::Vector3d* along = nullptr;  // a traction and g must be parallel to the plane
       if (const auto* t = load.as<TractionLoad>()) along = &t->traction;
       if (const auto* g = load.as<GravityLoad>()) along = &g->g;

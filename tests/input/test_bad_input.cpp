@@ -42,7 +42,7 @@ std::vector<BadScene> bad_2d_scenes() {
       {patch(R"({"body": {"mesh": {"sise": 0.1}}})"), "body.mesh.sise"},
       {patch(R"({"body": {"symmetry": "yes"}})"), "body.symmetry"},
       {patch(R"({"load": {"boundary": "bottom"}})"), "load.boundary"},
-      {patch(R"({"load": {"type": "force"}})"), "load.type"},
+      {patch(R"({"load": {"type": "moment"}})"), "load.type"},
       {patch(R"({"load": {"value": [0]}})"), "load.value"},
       {patch(R"({"load": {"value": [null, null]}})"), "load.value"},
       {patch(R"({"obstacle": {"normal": [0, 0]}})"), "obstacle.normal"},

@@ -110,7 +110,8 @@ bool large(const std::string& scene) {
 // minute each there): punch.json and pin-on-plane.json write the same 3D arrays in that stage,
 // and the force-driven twin adds only the proximal steps, which 2D scenes run too.
 bool heavy(const std::string& scene) {
-  return scene == "two-spheres.json" || scene == "hertz-sphere-pressure.json" || scene == "hertz-sphere.json";
+  return scene == "two-spheres.json" || scene == "hertz-sphere-pressure.json" || scene == "hertz-sphere.json" ||
+         scene == "hertz-sphere-force.json";
 }
 bool coarsened(const std::string& scene) { return scene == "mindlin-spheres.json"; }
 
