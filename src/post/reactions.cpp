@@ -9,7 +9,7 @@ namespace {
 
 // The force loads' rigid surfaces: the force each carries (the load at this step) and how far
 // it moved, one entry per load, after the supports.
-std::vector<Reaction> rigid_surfaces(const Model& model, const Eigen::VectorXd& u) {
+std::vector<Reaction> rigid_surface_reactions(const Model& model, const Eigen::VectorXd& u) {
   std::vector<Reaction> out;
   for (size_t l = 0; l < model.scene.loads.size(); ++l) {
     const RigidForceLoad* load = model.scene.loads[l].as<RigidForceLoad>();
@@ -51,7 +51,7 @@ std::vector<Reaction> reactions(const Model& model, const Eigen::VectorXd& u, co
       for (int node : nodes_of(d->boundary)) prescribed[node] = 1;
       any = true;
     }
-  if (!any) return rigid_surfaces(model, u);
+  if (!any) return rigid_surface_reactions(model, u);
   const Eigen::VectorXd displacement = full_displacement(model, u);
   const std::vector<ElementLaw> laws = element_laws(model);
   const int npe = mesh.nodes_per_element();
@@ -95,7 +95,7 @@ std::vector<Reaction> reactions(const Model& model, const Eigen::VectorXd& u, co
     reaction.force = whole_body_sum(model, reaction.force);
     out.push_back(reaction);
   }
-  for (Reaction& surface : rigid_surfaces(model, u)) out.push_back(std::move(surface));
+  for (Reaction& surface : rigid_surface_reactions(model, u)) out.push_back(std::move(surface));
   return out;
 }
 

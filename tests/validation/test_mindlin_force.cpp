@@ -16,17 +16,17 @@ using namespace contactqp::testing;
 
 namespace {
 
-constexpr double kMu = 0.3;
-constexpr double kP = 3.0991e-6;  // the scene's push force, per length
+constexpr double kMindlinForceMu = 0.3;
+constexpr double kMindlinForceP = 3.0991e-6;  // the scene's push force, per length
 
-RunReport run(const std::string& patch) {
+RunReport run_mindlin_by_force(const std::string& patch) {
   return run_scene(parse_scene(patched_scene("scenes/mindlin-force.json", patch)), RunOptions{});
 }
 
 // The scene with Q = ratio × μP in one shear step after the press.
-std::string sheared_to(double ratio) {
+std::string mindlin_sheared_to(double ratio) {
   nlohmann::json scene = nlohmann::json::parse(read_text(source_path("scenes/mindlin-force.json")));
-  scene["bodies"][0]["load"][1]["value"][0] = ratio * kMu * kP;
+  scene["bodies"][0]["load"][1]["value"][0] = ratio * kMindlinForceMu * kMindlinForceP;
   scene["steps"] = nlohmann::json::parse(R"([{"factors": {"push": 1}}, {"factors": {"push": 1, "shear": 1}}])");
   return scene.dump();
 }
@@ -35,7 +35,7 @@ std::string sheared_to(double ratio) {
 
 TEST_CASE("Cattaneo-Mindlin by force: the stick zone of two identical cylinders sheared by Q < mu P",
           "[validation][friction][force_control][heavy]") {
-  const RunReport report = run("{}");
+  const RunReport report = run_mindlin_by_force("{}");
   INFO(report.result.message);
   REQUIRE(report.steps.size() == 3);
   const double ratios[] = {0.3, 0.7};
@@ -49,7 +49,7 @@ TEST_CASE("Cattaneo-Mindlin by force: the stick zone of two identical cylinders 
     CAPTURE(k, m.load_ratio, m.stick_size, m.stick_size_computed);
     // The force is the load: Q/(μP) as asked, to the solve's tolerance, not as a push gives it.
     CHECK(m.load_ratio == Approx(ratios[k - 1]).epsilon(1e-5));
-    CHECK(step.pairs[0].total_force == Approx(kP).epsilon(1e-7));
+    CHECK(step.pairs[0].total_force == Approx(kMindlinForceP).epsilon(1e-7));
     // Mindlin's c within 3 % of b (the issue's measure: the error as a fraction of the contact size).
     CHECK(std::abs(m.stick_size_computed - m.stick_size) < 0.03 * m.half_width);
   }
@@ -60,7 +60,7 @@ TEST_CASE("Cattaneo-Mindlin by force at the edge of gross slip: converged below 
   TemporaryDirectory directory;
   SECTION("Q = mu P (1 - 1e-3): converged, nearly every node slipping") {
     const std::string scene = directory.path("under.json");
-    std::ofstream(scene) << sheared_to(1 - 1e-3);
+    std::ofstream(scene) << mindlin_sheared_to(1 - 1e-3);
     const RunReport report = run_scene(scene, RunOptions{});
     INFO(report.result.message);
     REQUIRE(report.result.status == Status::Converged);
@@ -70,7 +70,7 @@ TEST_CASE("Cattaneo-Mindlin by force at the edge of gross slip: converged below 
   }
   SECTION("Q = mu P (1 + 1e-3): exit 1 and the gross-slip line, naming the motion") {
     const std::string scene = directory.path("over.json");
-    std::ofstream(scene) << sheared_to(1 + 1e-3);
+    std::ofstream(scene) << mindlin_sheared_to(1 + 1e-3);
     const CliRun r = run_cli("solve " + scene + " --json " + directory.path("out.json"));
     CHECK(r.exit_status == 1);
     CHECK(r.out.find("unbounded: gross slip: the body slides along +x: the load along a free motion that only "
