@@ -57,6 +57,7 @@ struct RunReport {
   std::optional<HertzComparison> hertz;
   std::optional<PunchComparison> boussinesq;  // 3D scenes pressed by a flat punch
   std::vector<Reaction> reactions;            // one per displacement load
+  std::vector<FloatingBody> floating;         // each body only its contacts hold: how far it moved
   std::vector<PairContact> pairs;             // one per contact pair of a scene with bodies
   std::optional<FrictionFields> friction;     // each row's friction, with friction (the last step's)
   std::vector<StepReport> steps;              // each load step in order; empty without steps

@@ -72,6 +72,7 @@ struct FreeMotion {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // the rotations' centre: the part's centroid
   double extent = 1;                                 // the rotations' scale: the part's size
   int part = 0;                                      // the connected part of the mesh it moves
+  int first_node = 0;                                // a node of that part (its body: Model::body_of_node)
 };
 
 // A boundary that a force load (RigidForceLoad) moves as one rigid surface along one component:
@@ -153,8 +154,10 @@ void apply_load_step(Model& model, QuadraticProgram& qp, const std::vector<doubl
 
 // A motion d of the free DOFs (e.g. SolveResult::recession) as the body's free rigid motions
 // that make it, in words in the scene's axes: "along +y", "by rotation about (0, 2), clockwise"; "" when
-// the model has no free motion.
-std::string describe_free_motion(const Model& model, const Eigen::VectorXd& d);
+// the model has no free motion. With a verb each part's motion has its subject:
+// "the body moves freely along +y", or in a scene with several bodies
+// "body `ball` moves freely along +y".
+std::string describe_free_motion(const Model& model, const Eigen::VectorXd& d, const std::string& verb = "");
 
 // The full nodal displacement field (dim·n_nodes, global axes) from the free DOFs u.
 Eigen::VectorXd full_displacement(const Model& model, const Eigen::VectorXd& u);

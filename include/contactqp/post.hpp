@@ -269,6 +269,17 @@ std::vector<Reaction> reactions(const Model& model, const Eigen::VectorXd& u, co
                                 const std::function<std::vector<int>(const std::string&)>& nodes_of,
                                 const Eigen::VectorXd& friction_forces = Eigen::VectorXd());
 
+// A body that only its contacts hold (Model::free_motions): how far it moved as a whole, the
+// mean of its displacement over its volume (the L2 projection of u on translations), along each
+// of the scene's own axes (as a force load's value) that one of its free motions translates it
+// along; none along an axis that a support holds (a symmetry plane, a displacement load). One entry per such body, in body
+// order; "body" names a one-body scene's.
+struct FloatingBody {
+  std::string body;
+  std::optional<double> translation[3];
+};
+std::vector<FloatingBody> floating_bodies(const Model& model, const Eigen::VectorXd& u);
+
 // Nodal stresses (force per area), averaged over the elements sharing each node (weighted by
 // their areas or volumes) from each element's stress at that node. In 2D σzz = ν(σxx + σyy)
 // in plane strain, 0 in plane stress, and σyz = σxz = 0; with the mixed formulation

@@ -217,7 +217,7 @@ void bind_scene(py::module_& m) {
 
 status, message, backend (None with no_contact), iterations, u (free DOFs), lam, displacement
 (every node's, dim per node), certificate, objective, timings, diagnostics, contact, hertz
-(None when Hertz does not apply), reactions, pairs and bodies (a scene with several bodies:
+(None when Hertz does not apply), reactions, floating, pairs and bodies (a scene with several bodies:
 contactqp.PairResult, contactqp.BodyResult), dofs, constraints, nodes, elements, element_order,
 warnings; json(), csv(), vtu() give the output files' text.)")
       .def_property_readonly("status", [](const RunReport& r) { return r.result.status; })
@@ -249,6 +249,23 @@ warnings; json(), csv(), vtu() give the output files' text.)")
           "boussinesq", [](const RunReport& r) { return r.boussinesq ? py::cast(*r.boussinesq) : py::none(); },
           "Boussinesq's comparison for a scene pressed by a flat punch, else None")
       .def_property_readonly("reactions", [](const RunReport& r) { return reactions_list(r.reactions, r.model->dim); })
+      .def_property_readonly(
+          "floating",
+          [](const RunReport& r) {
+            py::list list;
+            for (const FloatingBody& body : r.floating) {
+              py::list moved;
+              for (int c = 0; c < r.model->dim; ++c)
+                moved.append(body.translation[c] ? py::object(py::float_(*body.translation[c])) : py::none());
+              py::dict entry;
+              entry["body"] = body.body;
+              entry["translation"] = moved;
+              list.append(entry);
+            }
+            return list;
+          },
+          "each body only its contacts hold: {'body', 'translation'}, the volume mean of its displacement "
+          "along each axis it is free to translate along (None along a held one)")
       .def_property_readonly(
           "pairs", [](const Report& r) { return pairs_list(r); },
           "one contactqp.PairResult per contact pair of a scene with bodies (empty otherwise)")

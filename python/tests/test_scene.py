@@ -66,6 +66,20 @@ def test_a_force_on_a_rigid_surface_reports_how_far_the_surface_moved():
     assert -surface["force"][1] == pytest.approx(r.contact.total_force, rel=1e-8)
 
 
+def test_a_ball_between_two_plates_reports_how_far_it_moved_as_a_whole():
+    # scenes/ball-between-plates.json: identical plates, the lower held, the upper's top moved by
+    # d by the force; by the mirror symmetry about the ball's centre the ball moves by d/2.
+    r = contactqp.solve_scene(source_path("scenes/ball-between-plates.json"))
+    assert r.status == contactqp.Status.CONVERGED
+    floating = {entry["body"]: entry["translation"] for entry in r.floating}
+    assert set(floating) == {"ball", "upper_plate"}
+    assert floating["ball"][0] is None  # the symmetry plane holds it along x
+    (surface,) = [reaction for reaction in r.reactions if "displacement" in reaction]
+    assert floating["ball"][1] == pytest.approx(surface["displacement"][1] / 2, rel=2e-3)
+    for pair in r.pairs:
+        assert abs(pair.force_on_node_body[1]) == pytest.approx(0.005, rel=1e-8)
+
+
 def test_csv_and_vtu_equal_the_cli_files(tmp_path):
     csv, vtu = tmp_path / "p.csv", tmp_path / "m.vtu"
     run = subprocess.run([CLI, "solve", HERTZ, "--backend", "active_set", "--csv", str(csv), "--vtu", str(vtu)],

@@ -196,6 +196,13 @@ std::string summary_table(const RunReport& report) {
                        f.y(), f.z())
               : format("  reaction     %s on \"%s\": (%.6g, %.6g)\n", r.load.c_str(), r.boundary.c_str(), f.x(), f.y());
   }
+  for (const FloatingBody& body : report.floating) {
+    std::string moved;
+    for (int c = 0; c < model.dim; ++c)
+      moved += (c ? ", " : "") + (body.translation[c] ? format("%.6g", *body.translation[c]) : std::string("held"));
+    out +=
+        format("  floating     %s, held by its contacts: moved by (%s) on average\n", body.body.c_str(), moved.c_str());
+  }
   out += step_lines(report);
   std::string times;
   for (const auto& [phase, seconds] : report.timings.phases())

@@ -325,6 +325,16 @@ std::string result_json(const RunReport& report) {
     out["pairs"] = pairs;
   }
   out["reactions"] = reactions_json(report.reactions, dim);
+  if (!report.floating.empty()) {  // bodies only their contacts hold (docs/bodies.md)
+    json floating = json::array();
+    for (const FloatingBody& body : report.floating) {
+      json translation = json::array();
+      for (int c = 0; c < dim; ++c)
+        translation.push_back(body.translation[c] ? number(*body.translation[c]) : json(nullptr));
+      floating.push_back({{"body", body.body}, {"translation", translation}});
+    }
+    out["floating"] = floating;
+  }
   json solver = {{"tol", number(report.options.tol)}, {"max_iterations", report.options.max_iterations}};
   for (const auto& [name, value] : report.result.diagnostics) solver[name] = number(value);
   out["solver"] = solver;

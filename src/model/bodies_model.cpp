@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <optional>
+#include <set>
 
 #include "contact/contact.hpp"
 #include "contactqp/errors.hpp"
@@ -71,26 +74,30 @@ double largest_push(const std::vector<LoadSpec>& loads) {
 // The candidate distance for pairs and obstacles without their own max_gap: two bodies close
 // by at most the sum of their pushes, so 1.5 × that sum; with a force load every facing node.
 void choose_bodies_max_gap(const Scene& scene, Model& model) {
+  // When every contact names its max_gap, the largest bounds the refined zone of the generated
+  // shapes (as a one-body scene's contact.max_gap does), whatever the loads: a force scene and
+  // the push that gives its force are then meshed alike.
+  double given = 0;
+  bool all_given = !scene.pairs.empty() || !scene.obstacle_contacts.empty();
+  for (const ContactPair& pair : scene.pairs) {
+    all_given = all_given && pair.max_gap.has_value();
+    given = std::max(given, pair.max_gap.value_or(0.0));
+  }
+  for (const ObstacleContactSpec& entry : scene.obstacle_contacts) {
+    all_given = all_given && entry.max_gap.has_value();
+    given = std::max(given, entry.max_gap.value_or(0.0));
+  }
+  if (all_given) {
+    model.max_gap = given;
+    model.max_gap_rule = "the largest max_gap of the contacts";
+    return;
+  }
   double sum = 0;
   for (const SceneBody& body : scene.bodies) {
     const double push = largest_push(body.loads);
-    if (push < 0) {
-      // Forces give no displacement scale: every facing node, unless every contact names its
-      // max_gap, which then bounds the refined zone of the generated shapes too (as a one-body
-      // scene's contact.max_gap does).
-      double given = 0;
-      bool all_given = !scene.pairs.empty() || !scene.obstacle_contacts.empty();
-      for (const ContactPair& pair : scene.pairs) {
-        all_given = all_given && pair.max_gap.has_value();
-        given = std::max(given, pair.max_gap.value_or(0.0));
-      }
-      for (const ObstacleContactSpec& entry : scene.obstacle_contacts) {
-        all_given = all_given && entry.max_gap.has_value();
-        given = std::max(given, entry.max_gap.value_or(0.0));
-      }
-      model.max_gap = all_given ? given : std::numeric_limits<double>::infinity();
-      model.max_gap_rule = all_given ? "the largest max_gap of the contacts (the loads include forces)"
-                                     : "every boundary node facing the other side (the loads include forces)";
+    if (push < 0) {  // forces give no displacement scale: every facing node
+      model.max_gap = std::numeric_limits<double>::infinity();
+      model.max_gap_rule = "every boundary node facing the other side (the loads include forces)";
       return;
     }
     sum += push;
@@ -107,7 +114,7 @@ ObstacleSpec to_local(const ObstacleSpec& obstacle, const BodyPlacement& placeme
 
 // A generated body's boundary as a rigid stand-in (global frame), to refine the other side of
 // a pair where it may touch: a half disc's arc is its circle, a hemisphere's surface its
-// sphere, a flat side its plane. None for a mesh body.
+// sphere, a flat side its plane. None for a mesh body (mesh_stand_in() below has its boundary).
 std::optional<ObstacleSpec> stand_in(const SceneBody& body, const std::string& boundary, int dim,
                                      const std::string& path) {
   const BodySpec& b = body.body;
@@ -149,6 +156,45 @@ std::optional<ObstacleSpec> stand_in(const SceneBody& body, const std::string& b
     return plane(point, outward);
   }
   return std::nullopt;
+}
+
+// A mesh body's boundary as the stand-in, from its placed mesh: in 2D the polyline of its edges
+// (oriented with the mesh body on their left, so the other side lies on their right); none in
+// 3D, or when the boundary is not one open chain.
+std::optional<ObstacleSpec> mesh_stand_in(const Mesh& placed, const std::string& boundary, const std::string& path) {
+  const auto found = placed.boundaries.find(boundary);
+  if (placed.dim != 2 || found == placed.boundaries.end() || found->second.empty()) return std::nullopt;
+  std::map<int, int> next;  // an edge's first vertex → its second
+  std::set<int> ends;
+  for (const BoundaryFace& face : found->second) {
+    if (!next.emplace(face.nodes[0], face.nodes[1]).second) return std::nullopt;
+    ends.insert(face.nodes[1]);
+  }
+  std::vector<int> starts;
+  for (const auto& [from, to] : next)
+    if (!ends.count(from)) starts.push_back(from);
+  if (starts.size() != 1) return std::nullopt;  // a closed loop, or several pieces
+  ProfileObstacle profile;
+  profile.body_on_left = false;
+  for (int node = starts.front();; node = next.at(node)) {
+    profile.points.push_back(placed.nodes[node]);
+    if (!next.count(node)) break;
+  }
+  if (profile.points.size() != found->second.size() + 1) return std::nullopt;
+  ObstacleSpec spec;
+  spec.path = path;
+  spec.shape = profile;
+  return spec;
+}
+
+// A body as a one-body scene of its own: its shape and material, the scene's model and source.
+Scene own_scene(const Scene& scene, const SceneBody& body) {
+  Scene local;
+  local.source = scene.source;
+  local.model = scene.model;
+  local.material = body.material;
+  local.body = body.body;
+  return local;
 }
 
 // Reflects a placed body's mesh (y → −y in 2D, z → −z in 3D) and shifts it. A reflection turns
@@ -235,6 +281,27 @@ Model build_bodies_model(const Scene& scene, const BuildOptions& options) {
   model.scene.loads.clear();
   Stopwatch clock;
   double mesh_seconds = 0;
+  // A mesh-file body is meshed as its file says, whatever it touches; it is read (or a .geo
+  // meshed) once, when first needed: its own turn, or the other side of a pair asking for its
+  // boundary as a stand-in.
+  std::vector<std::optional<Mesh>> file_meshes(scene.bodies.size()), placed_file_meshes(scene.bodies.size());
+  auto file_mesh = [&](int b) -> const Mesh& {
+    if (!file_meshes[b]) {
+      const SceneBody& body = scene.bodies[b];
+      const Scene local = own_scene(scene, body);
+      Stopwatch mesh_clock;
+      file_meshes[b] = for_body(body, [&] { return mesh_body(local, model.max_gap, options); });
+      mesh_seconds += mesh_clock.seconds();
+    }
+    return *file_meshes[b];
+  };
+  auto placed_file_mesh = [&](int b) -> const Mesh& {
+    if (!placed_file_meshes[b]) {
+      placed_file_meshes[b] = file_mesh(b);
+      place(*placed_file_meshes[b], scene.bodies[b].placement);
+    }
+    return *placed_file_meshes[b];
+  };
   for (size_t b = 0; b < scene.bodies.size(); ++b) {
     const SceneBody& body = scene.bodies[b];
     const std::vector<std::string> touching = touching_boundaries(scene, static_cast<int>(b));
@@ -242,11 +309,7 @@ Model build_bodies_model(const Scene& scene, const BuildOptions& options) {
       throw InputError(body.path, "(\"" + body.name + "\") touches nothing: name one of its boundaries in contact");
     // The body as a one-body scene in its own frame, the obstacles and the other sides of its
     // pairs (as stand-ins) moved into that frame for the mesher's refinement.
-    Scene local;
-    local.source = scene.source;
-    local.model = scene.model;
-    local.material = body.material;
-    local.body = body.body;
+    Scene local = own_scene(scene, body);
     local.loads = body.loads;
     local.contact.boundary = touching.front();
     for (const ObstacleSpec& obstacle : scene.obstacles)
@@ -254,13 +317,28 @@ Model build_bodies_model(const Scene& scene, const BuildOptions& options) {
     for (const ContactPair& pair : scene.pairs)
       for (int k = 0; k < 2; ++k)
         if (pair.body[k] == static_cast<int>(b)) {
-          const SceneBody& other = scene.bodies[pair.body[1 - k]];
-          if (auto proxy = stand_in(other, pair.boundary[1 - k], dim, pair.path))
-            local.obstacles.push_back(to_local(*proxy, body.placement, dim));
+          const int o = pair.body[1 - k];
+          const SceneBody& other = scene.bodies[o];
+          auto proxy = other.body.shape == "mesh" ? mesh_stand_in(placed_file_mesh(o), pair.boundary[1 - k], pair.path)
+                                                  : stand_in(other, pair.boundary[1 - k], dim, pair.path);
+          if (proxy) local.obstacles.push_back(to_local(*proxy, body.placement, dim));
         }
+    Mesh mesh;
     Stopwatch mesh_clock;
-    Mesh mesh = for_body(body, [&] { return mesh_body(local, model.max_gap, options); });
-    mesh_seconds += mesh_clock.seconds();
+    if (body.body.shape == "mesh") {
+      // A later body may still need this one's boundary as its stand-in: place a copy first.
+      const bool partner_later = std::any_of(scene.pairs.begin(), scene.pairs.end(), [&](const ContactPair& pair) {
+        for (int k = 0; k < 2; ++k)
+          if (pair.body[k] == static_cast<int>(b) && pair.body[1 - k] > static_cast<int>(b)) return true;
+        return false;
+      });
+      if (partner_later) placed_file_mesh(static_cast<int>(b));
+      file_mesh(static_cast<int>(b));
+      mesh = std::move(*file_meshes[b]);
+    } else {
+      mesh = for_body(body, [&] { return mesh_body(local, model.max_gap, options); });
+      mesh_seconds += mesh_clock.seconds();  // file_mesh() counts its own
+    }
     for_body(body, [&] {
       check_mesh_names(local, mesh);
       for (const std::string& name : touching)

@@ -117,6 +117,7 @@ Eigen::MatrixXd motions_held_by_contact(Model& model, const std::function<Eigen:
       free.centre = part.centre;
       free.extent = part.extent;
       free.part = static_cast<int>(p);
+      free.first_node = part.first_node;
       model.free_motions.push_back(free);
       Eigen::VectorXd column = Eigen::VectorXd::Zero(dim * n_nodes);
       for (int node = 0; node < n_nodes; ++node)
@@ -150,7 +151,7 @@ Eigen::MatrixXd free_modes_on_dofs(const Model& model, const Eigen::MatrixXd& at
 
 namespace contactqp {
 
-std::string describe_free_motion(const Model& model, const Eigen::VectorXd& d) {
+std::string describe_free_motion(const Model& model, const Eigen::VectorXd& d, const std::string& verb) {
   const Eigen::MatrixXd& R = model.free_modes;
   if (R.cols() == 0 || d.size() != R.rows()) return "";
   // d = R c: the coefficients of the free motions, then the motion of each part they move.
@@ -170,7 +171,12 @@ std::string describe_free_motion(const Model& model, const Eigen::VectorXd& d) {
     detail::PartFreedom part;
     part.centre = first.centre;
     part.extent = first.extent;
-    text += (text.empty() ? "" : ", ") + detail::describe_motion(model, part, rigid);
+    // With a verb the subject too: "the body", or the body's name in a scene with several.
+    const std::string subject =
+        verb.empty()           ? ""
+        : model.bodies.empty() ? "the body " + verb + " "
+                               : "body `" + model.bodies[model.body_of_node(first.first_node)].name + "` " + verb + " ";
+    text += (text.empty() ? "" : ", ") + subject + detail::describe_motion(model, part, rigid);
   }
   return text;
 }

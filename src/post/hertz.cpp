@@ -8,10 +8,9 @@
 #include <cmath>
 #include <map>
 
-#include <Eigen/SVD>
-
 #include "contact/contact.hpp"
 #include "contactqp/post.hpp"
+#include "fitted_curvature.hpp"
 #include "qp/pi.hpp"
 
 namespace contactqp {
@@ -43,47 +42,20 @@ double hertz_pressure(const HertzComparison& hertz, double x) {
 
 namespace {
 
-// Signed curvature of the body's boundary through the nodes in contact with obstacle o
-// (positive when convex towards the obstacle): an algebraic circle (2D) or sphere (3D)
-// A|x|² + D·x + F = 0 through the initial positions, fitted in centred, scaled coordinates
-// (exact for nodes on a circle or sphere, 0 for nodes on a line or plane). nullopt with too
-// few nodes in contact (four in 2D, six in 3D).
+// Signed curvature of the body's boundary through the nodes in contact with obstacle o (positive
+// when convex towards it), fitted through their initial positions (fitted_curvature.hpp).
 std::optional<double> fitted_body_curvature(const Model& model, const ObstacleContact& contact) {
-  const int dim = model.dim;
   std::vector<Eigen::Vector3d> points;
-  const double loaded = 1e-8 * std::max(1e-300, [&] {
-                          double m = 0;
-                          for (const auto& p : contact.profile) m = std::max(m, p.force);
-                          return m;
-                        }());
+  double most = 1e-300;
+  for (const ContactProfilePoint& p : contact.profile) most = std::max(most, p.force);
   for (const ContactProfilePoint& p : contact.profile)
-    if (p.force > loaded) points.push_back(model.mesh.nodes[p.node]);
-  if (static_cast<int>(points.size()) < (dim == 2 ? 4 : 6)) return std::nullopt;
+    if (p.force > 1e-8 * most) points.push_back(model.mesh.nodes[p.node]);
+  if (points.empty()) return std::nullopt;
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (const auto& x : points) mean += x;
   mean /= static_cast<double>(points.size());
-  double scale = 0;
-  for (const auto& x : points) scale = std::max(scale, (x - mean).norm());
-  const int unknowns = dim + 2;
-  Eigen::MatrixXd M(points.size(), unknowns);
-  for (size_t k = 0; k < points.size(); ++k) {
-    const Eigen::Vector3d y = (points[k] - mean) / scale;
-    M(k, 0) = y.squaredNorm();
-    for (int c = 0; c < dim; ++c) M(k, 1 + c) = y[c];
-    M(k, unknowns - 1) = 1.0;
-  }
-  const Eigen::VectorXd c = Eigen::JacobiSVD<Eigen::MatrixXd>(M, Eigen::ComputeFullV).matrixV().col(unknowns - 1);
-  const double A = c[0], F = c[unknowns - 1];
-  Eigen::Vector3d linear = Eigen::Vector3d::Zero();
-  for (int k = 0; k < dim; ++k) linear[k] = c[1 + k];
-  const double gradient =
-      std::sqrt(std::max(0.0, linear.squaredNorm() - 4 * A * F));  // |∇(A|y|² + D·y + F)| on the surface
-  if (!(gradient > 0)) return std::nullopt;
-  // ∇ at the centroid (y = 0) is D; the body is convex when the side where the form is
-  // negative (inside the circle for A > 0) is away from the obstacle, i.e. ∇ points at it.
   const Eigen::Vector3d towards_obstacle = -detail::project(model.scene.obstacles[contact.obstacle], mean).normal;
-  const double sign = linear.dot(towards_obstacle) >= 0 ? 1.0 : -1.0;
-  return sign * 2 * A / gradient / scale;
+  return fitted_curvature(points, model.dim, towards_obstacle);
 }
 
 // 1/R = body curvature + obstacle curvature, and the words for where it came from.

@@ -4,22 +4,51 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <vector>
 
 #include "contact/contact.hpp"
 #include "contactqp/post.hpp"
+#include "fitted_curvature.hpp"
 #include "qp/pi.hpp"
 
 namespace contactqp {
 namespace {
 
 // The curvature of a generated body's boundary: 1/R for a half disc's arc or a hemisphere's
-// surface, 0 for a flat side; nullopt for a mesh body (not fitted yet) or a curved top.
+// surface, 0 for a flat side; nullopt for a mesh body (fitted below) or a curved top.
 std::optional<double> boundary_curvature(const BodySpec& body, const std::string& boundary) {
   if ((body.shape == "half_disc" && boundary == "arc") || (body.shape == "hemisphere" && boundary == "surface"))
     return 1.0 / body.radius;
-  if (body.shape == "rectangle" || body.shape == "box" || boundary == "top") return 0.0;
+  if (body.shape == "rectangle" || body.shape == "box" || (body.shape != "mesh" && boundary == "top")) return 0.0;
   return std::nullopt;
+}
+
+// A mesh body's side of a pair, fitted through the nodes that carry the pair's force (their
+// initial positions): the node side's loaded nodes, or the faces those nodes press on. A
+// candidate's normal is its face's outward one, from the face side towards the node side.
+std::optional<double> fitted_side_curvature(const Model& model, const PairContact& contact, bool node_side) {
+  std::map<int, const Candidate*> row_of;
+  for (const Candidate& c : model.candidates)
+    if (c.pair == contact.pair) row_of[c.node] = &c;
+  double most = 1e-300;
+  for (const ContactProfilePoint& p : contact.profile) most = std::max(most, p.force);
+  std::vector<Eigen::Vector3d> points;
+  std::set<int> taken;
+  Eigen::Vector3d towards = Eigen::Vector3d::Zero();
+  for (const ContactProfilePoint& p : contact.profile) {
+    const auto row = row_of.find(p.node);
+    if (!(p.force > 1e-8 * most) || row == row_of.end()) continue;
+    const Candidate& c = *row->second;
+    towards += node_side ? -c.normal : c.normal;
+    if (node_side) {
+      points.push_back(model.mesh.nodes[p.node]);
+      continue;
+    }
+    for (int j = 0; j < c.n_face_nodes; ++j)
+      if (taken.insert(c.face_nodes[j]).second) points.push_back(model.mesh.nodes[c.face_nodes[j]]);
+  }
+  return fitted_curvature(points, model.dim, towards);
 }
 
 // 1/E* of one body: (1 − ν²)/E in plane strain and solid, 1/E in plane stress.
@@ -41,14 +70,19 @@ std::optional<HertzComparison> compare_pair_with_hertz(const Model& model, const
   const ModelBody& b = model.bodies[contact.face_body];
   const ContactPair& pair = model.scene.pairs[contact.pair];
   const int node_side = model.pair_sides[contact.pair].node_side;
-  const auto ka = boundary_curvature(a.scene.body, pair.boundary[node_side]);
-  const auto kb = boundary_curvature(b.scene.body, pair.boundary[1 - node_side]);
-  if (!ka || !kb || !(*ka + *kb > 0)) return std::nullopt;
+  auto ka = boundary_curvature(a.scene.body, pair.boundary[node_side]);
+  auto kb = boundary_curvature(b.scene.body, pair.boundary[1 - node_side]);
+  const bool fitted = !ka || !kb;
+  if (!ka && a.scene.body.shape == "mesh") ka = fitted_side_curvature(model, contact, true);
+  if (!kb && b.scene.body.shape == "mesh") kb = fitted_side_curvature(model, contact, false);
   const int dim = model.dim;
+  // Two flat sides (or a curvature lost in the fit's noise) are not Hertz's problem.
+  const double zone = dim == 3 ? contact.contact_radius : contact.half_width;
+  if (!ka || !kb || !(*ka + *kb > 0) || (fitted && (*ka + *kb) * std::max(zone, 1e-300) < 1e-6)) return std::nullopt;
   HertzComparison hertz;
   hertz.dim = dim;
   hertz.radius = 1.0 / (*ka + *kb);
-  hertz.radius_source = "bodies' radii";
+  hertz.radius_source = fitted ? "bodies' radii, a mesh body's fitted" : "bodies' radii";
   hertz.effective_modulus = 1.0 / (compliance(a.scene) + compliance(b.scene));
   const double R = hertz.radius, E = hertz.effective_modulus;
   const double P =

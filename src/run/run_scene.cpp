@@ -89,11 +89,11 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
       model->free_modes.cols() > 0) {
     const std::string prefix = "unbounded: ", slip = "unbounded: gross slip: ";
     const std::string& said = report.result.message;
-    const std::string motion = describe_free_motion(*model, report.result.recession);
+    const Eigen::VectorXd& d = report.result.recession;
     if (said.compare(0, slip.size(), slip) == 0)  // a tangential load beyond what friction holds
-      report.result.message = slip + "the body slides " + motion + ": " + said.substr(slip.size());
+      report.result.message = slip + describe_free_motion(*model, d, "slides") + ": " + said.substr(slip.size());
     else
-      report.result.message = prefix + "the body moves freely " + motion +
+      report.result.message = prefix + describe_free_motion(*model, d, "moves freely") +
                               ": the load pushes it away from every contact (" +
                               (said.compare(0, prefix.size(), prefix) == 0 ? said.substr(prefix.size()) : said) + ")";
   }
@@ -122,6 +122,9 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
     report.boussinesq = compare_with_boussinesq(*model, report.contact);
   }
   report.reactions = std::move(state.reactions);
+  // No equilibrium (unbounded, infeasible) leaves nothing whose mean motion means anything.
+  if (report.result.status != Status::Unbounded && report.result.status != Status::Infeasible)
+    report.floating = floating_bodies(*model, report.result.u);
   report.pairs = std::move(state.pairs);
   report.friction = std::move(state.friction);
   // The largest contact pressure anywhere, as the VTU's contact_pressure field holds it: the

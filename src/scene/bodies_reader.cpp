@@ -58,10 +58,11 @@ SceneBody read_scene_body(const json& entry, const std::string& path, const std:
         throw InputError(own.path_of("offset"),
                          "= " + format_point(body.placement.offset, dim) + ": a body with symmetry keeps its cut on " +
                              (c == 0 ? "x = 0" : "y = 0") + " (offset only along " + (dim == 2 ? "y" : "z") + ")");
-  if (!own.has("load"))
-    throw InputError(path + ".load", "is missing: every body needs a load or a support that holds it");
-  for (const auto& [item, load_path] : one_or_many(own.value("load"), own.path_of("load")))
-    body.loads.push_back(read_load(JsonObject(*item, load_path), body.body, dim));
+  // A body without a load (a ball between two plates) is held by its contacts alone: the
+  // rigid-motion check refuses it, naming the motion, when no candidate row can stop one.
+  if (own.has("load"))
+    for (const auto& [item, load_path] : one_or_many(own.value("load"), own.path_of("load")))
+      body.loads.push_back(read_load(JsonObject(*item, load_path), body.body, dim));
   return body;
 }
 
