@@ -200,8 +200,8 @@ std::string summary_table(const RunReport& report) {
     std::string moved;
     for (int c = 0; c < model.dim; ++c)
       moved += (c ? ", " : "") + (body.translation[c] ? format("%.6g", *body.translation[c]) : std::string("held"));
-    out +=
-        format("  floating     %s, held by its contacts: moved by (%s) on average\n", body.body.c_str(), moved.c_str());
+    const std::string who = model.bodies.empty() ? "the body" : body.body;
+    out += format("  floating     %s, held by its contacts: moved by (%s) on average\n", who.c_str(), moved.c_str());
   }
   out += step_lines(report);
   std::string times;
