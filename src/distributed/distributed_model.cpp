@@ -96,19 +96,23 @@ std::vector<int> distributed_point_nodes(const DistributedModel& out, const Scen
 }
 
 // The consistent nodal forces of this rank's faces and elements, and the point loads on the
-// nodes it owns (a share of the force for a node on symmetry planes, as nodal_forces() gives).
-Eigen::VectorXd distributed_nodal_forces(const DistributedModel& out, const std::vector<int>& point_nodes) {
+// nodes it owns (a share of the force for a node on symmetry planes, as nodal_forces() gives):
+// of every load, or of load `only` alone (a load step's share).
+constexpr std::size_t kEveryLoad = static_cast<std::size_t>(-1);
+Eigen::VectorXd distributed_nodal_forces(const DistributedModel& out, const std::vector<int>& point_nodes,
+                                         std::size_t only = kEveryLoad) {
   const Model& model = out.local;
+  const auto counted = [only](std::size_t l) { return only == kEveryLoad || l == only; };
   Scene without_points = model.scene;
   std::vector<LoadSpec> loads;
-  for (const LoadSpec& load : without_points.loads)
-    if (!load.as<PointLoad>()) loads.push_back(load);
+  for (std::size_t l = 0; l < model.scene.loads.size(); ++l)
+    if (counted(l) && !model.scene.loads[l].as<PointLoad>()) loads.push_back(model.scene.loads[l]);
   without_points.loads = loads;
   Eigen::VectorXd f = nodal_forces(without_points, model.mesh, std::vector<int>(loads.size(), -1));
   const int dim = model.dim;
   for (std::size_t l = 0; l < model.scene.loads.size(); ++l) {
     const PointLoad* point = model.scene.loads[l].as<PointLoad>();
-    if (!point || point_nodes[l] < 0) continue;
+    if (!point || point_nodes[l] < 0 || !counted(l)) continue;
     int planes = 0;
     for (const std::string& plane : symmetry_boundaries(model.scene.body, dim))
       planes += out.on_boundary(point_nodes[l], plane);
@@ -218,6 +222,10 @@ DistributedModel build_distributed_model(const Scene& scene, const BuildOptions&
   apply_displacement_conditions(model, scene, model.rotation, nodes_of);
   checkpoint();
   model.nodal_force = distributed_nodal_forces(out, point_nodes);
+  // Load steps: each load's share, as build_model() keeps it (apply_load_step scales them).
+  if (!scene.steps.empty())
+    model.load_shares = load_shares(
+        model, nodes_of, [&out, &point_nodes](std::size_t l) { return distributed_nodal_forces(out, point_nodes, l); });
   warn_near_incompressible(scene, model.mesh, model.warnings);
   number_rows(out);
   model.timings.add("model", clock.seconds());

@@ -64,7 +64,8 @@ struct DistributedModel {
 
 // Collective: distributes the mesh, then builds every rank's part of the model. Bad input is
 // thrown on the rank that finds it; the others meet it at the next checkpoint() and throw
-// FailedElsewhere (run/phases.hpp). One-body scenes only.
+// FailedElsewhere (run/phases.hpp). One-body scenes only. With load steps the part keeps each
+// load's share (Model::load_shares), as build_model() does.
 // `on_phase`, when given, is called with "model" once the mesh is distributed.
 DistributedModel build_distributed_model(const Scene& scene, const BuildOptions& options,
                                          const std::function<void(const char* phase)>& on_phase = {});

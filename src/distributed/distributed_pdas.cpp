@@ -42,8 +42,8 @@ PetscErrorCode null_space_of(const std::vector<Vec>& vectors, bool orthonormalis
 
 // The loop on the distributed problem, with the P1 start for quadratic elements (the P1
 // level's columns at a candidate vertex are in its own variables, distributed_problem.hpp).
-PetscErrorCode solve(const DistributedBoundQp& problem, const DistributedPdasOptions& options, BoundPdasResult* solved,
-                     bool* options_error, double* petsc_bytes) {
+PetscErrorCode solve(const DistributedBoundQp& problem, const DistributedPdasOptions& options, const WarmStart* start,
+                     BoundPdasResult* solved, bool* options_error, double* petsc_bytes) {
   MatNullSpace modes = nullptr, coarse_modes = nullptr;
   PetscCall(null_space_of(problem.near_null_space, false, &modes));  // orthonormal already
   if (modes) PetscCall(MatSetNearNullSpace(problem.A, modes));
@@ -68,7 +68,7 @@ PetscErrorCode solve(const DistributedBoundQp& problem, const DistributedPdasOpt
   settings.p1_start = options.p1_start && !options.without_bounds;
   // Without bounds nothing but stationarity is left, and the inner rule holds that.
   settings.residual = options.without_bounds ? [](Vec, const std::vector<double>&) { return 0.0; } : options.residual;
-  const PetscErrorCode code = solve_bound_pdas(qp, settings, solved, options_error);
+  const PetscErrorCode code = solve_bound_pdas(qp, settings, solved, options_error, start);
   if (options.without_bounds) solved->mu.assign(problem.bounded.size(), 0.0);
   *petsc_bytes = matrix_bytes(problem.A) + solved->multigrid.bytes;
   if (modes) PetscCall(MatNullSpaceDestroy(&modes));
@@ -90,6 +90,8 @@ DistributedPdasResult& DistributedPdasResult::operator=(DistributedPdasResult&& 
   std::swap(linear_solves, other.linear_solves);
   std::swap(preconditioner_setups, other.preconditioner_setups);
   std::swap(active, other.active);
+  std::swap(active_bounds, other.active_bounds);
+  std::swap(multigrid, other.multigrid);
   std::swap(residual, other.residual);
   std::swap(setup_seconds, other.setup_seconds);
   std::swap(iterate_seconds, other.iterate_seconds);
@@ -108,8 +110,11 @@ DistributedPdasResult::~DistributedPdasResult() {
   if (v && !petsc_finalized()) VecDestroy(&v);
 }
 
-DistributedPdasResult solve_distributed_pdas(const DistributedBoundQp& qp, const DistributedPdasOptions& options) {
+DistributedPdasResult solve_distributed_pdas(const DistributedBoundQp& qp, const DistributedPdasOptions& options,
+                                             const DistributedPdasResult* previous) {
   DistributedPdasResult result;
+  WarmStart start;
+  if (previous) start = {previous->solver_of_A, previous->v, previous->active_bounds, previous->multigrid};
   bool options_error = false;
   {
     std::lock_guard<std::mutex> lock(petsc_mutex());
@@ -118,7 +123,7 @@ DistributedPdasResult solve_distributed_pdas(const DistributedBoundQp& qp, const
     const long generation = runtime.generation();
     BoundPdasResult solved;
     double petsc_bytes = 0;
-    const PetscErrorCode code = solve(qp, options, &solved, &options_error, &petsc_bytes);
+    const PetscErrorCode code = solve(qp, options, previous ? &start : nullptr, &solved, &options_error, &petsc_bytes);
     // A PETSc error on one rank is every rank's (the loop's collectives have ended by then).
     int failed = code != 0;
     MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
@@ -137,6 +142,8 @@ DistributedPdasResult solve_distributed_pdas(const DistributedBoundQp& qp, const
     result.linear_solves = solved.linear_solves;
     result.preconditioner_setups = solved.preconditioner_setups;
     result.active = solved.active;
+    result.active_bounds = solved.active_bounds;
+    result.multigrid = solved.multigrid;
     result.residual = solved.residual;
     result.setup_seconds = solved.setup_seconds;
     result.iterate_seconds = solved.iterate_seconds;

@@ -41,7 +41,9 @@ struct DistributedPdasResult {
   int iterations = 0;
   long long krylov_iterations = 0, linear_solves = 0;
   int preconditioner_setups = 0;
-  long long active = 0;  // bounds active at the end, all ranks
+  long long active = 0;             // bounds active at the end, all ranks
+  std::vector<char> active_bounds;  // this rank's, 1 where active (the next load step's start)
+  MultigridStatistics multigrid;    // the hierarchy's
   double residual = 0;
   double setup_seconds = 0, iterate_seconds = 0;
   std::string method;
@@ -61,6 +63,9 @@ struct DistributedPdasResult {
 };
 
 // Collective. InputError for bad PETSc options (on every rank); numerical failures in status.
-DistributedPdasResult solve_distributed_pdas(const DistributedBoundQp& qp, const DistributedPdasOptions& options);
+// With `previous` (a load step's solve before this one, on the same A, converged): its
+// hierarchy, no second set-up, and its answer as the start.
+DistributedPdasResult solve_distributed_pdas(const DistributedBoundQp& qp, const DistributedPdasOptions& options,
+                                             const DistributedPdasResult* previous = nullptr);
 
 }  // namespace contactqp::detail

@@ -145,17 +145,15 @@ void count_nonzeros(const DistributedModel& dm, std::vector<PetscInt>& diagonal,
   }
 }
 
-// The element matrices into A, each in the bound form's variables, and the prescribed
-// displacements' share of f (of this rank's elements: `f` holds the local free DOFs).
-void add_elements(const DistributedModel& dm, const DistributedBoundQp& qp, Eigen::VectorXd& f, double& largest,
-                  bool& finite) {
+// The element matrices into A, each in the bound form's variables.
+void add_elements(const DistributedModel& dm, const DistributedBoundQp& qp, double& largest, bool& finite) {
   const Model& model = dm.local;
   const Mesh& mesh = model.mesh;
   const std::vector<ElementLaw> laws = element_laws(model);
   const int npe = mesh.nodes_per_element(), dim = mesh.dim;
   const ElementType type = mesh.type();
   std::vector<Eigen::Vector3d> coordinates(npe);
-  std::vector<int> position, free, moved;  // the element's free DOFs: their place in K_e, local index
+  std::vector<int> position, free;  // the element's free DOFs: their place in K_e, local index
   std::vector<PetscInt> rows;
   std::vector<int> place;
   for (int e = 0; e < mesh.n_elements(); ++e) {
@@ -168,16 +166,12 @@ void add_elements(const DistributedModel& dm, const DistributedBoundQp& qp, Eige
     largest = std::max(largest, Ke.cwiseAbs().maxCoeff());
     position.clear();
     free.clear();
-    moved.clear();
     for (int i = 0; i < npe; ++i)
       for (int c = 0; c < dim; ++c) {
-        const int dof = dim * v[i] + c, column = model.free_index[dof];
-        if (column >= 0) {
-          position.push_back(dim * i + c);
-          free.push_back(column);
-        } else if (model.prescribed[dof] != 0) {
-          moved.push_back(dim * i + c);
-        }
+        const int column = model.free_index[dim * v[i] + c];
+        if (column < 0) continue;
+        position.push_back(dim * i + c);
+        free.push_back(column);
       }
     const int m = static_cast<int>(free.size());
     if (m == 0) continue;
@@ -190,11 +184,6 @@ void add_elements(const DistributedModel& dm, const DistributedBoundQp& qp, Eige
         const PetscInt row = dm.node_row[v[i]] + c;
         check_petsc(MatSetValue(qp.A, row, row, Ke(dim * i + c, dim * i + c), ADD_VALUES), "MatSetValue");
       }
-    // f −= K_fp u_p, before the change of variables (f is in u).
-    for (int a : moved) {
-      const double u = model.prescribed[dim * v[a / dim] + a % dim];
-      for (int k = 0; k < m; ++k) f[free[k]] -= Ke(position[k], a) * u;
-    }
     Eigen::MatrixXd Kf(m, m);
     for (int k = 0; k < m; ++k)
       for (int l = 0; l < m; ++l) Kf(k, l) = Ke(position[k], position[l]);
@@ -443,6 +432,56 @@ DistributedBoundQp::~DistributedBoundQp() {
   if (A) MatDestroy(&A);
 }
 
+LoadVectorRange set_load_vectors(const DistributedModel& dm, DistributedBoundQp& qp) {
+  const Model& model = dm.local;
+  // f on the local free DOFs: the forces of this rank's faces and elements (in the DOF frames),
+  // then the prescribed displacements' share; summed over the ranks by PETSc.
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(model.n_free);
+  add_force_loads(model, f);
+  add_prescribed_forces(model, f);
+  check_petsc(VecSet(qp.f, 0.0), "VecSet");
+  std::vector<PetscInt> rows;
+  std::vector<PetscScalar> values;
+  for (int k = 0; k < model.n_free; ++k)
+    if (f[k] != 0) {
+      rows.push_back(dm.row_of_free[k]);
+      values.push_back(f[k]);
+    }
+  check_petsc(VecSetValues(qp.f, static_cast<PetscInt>(rows.size()), rows.data(), values.data(), ADD_VALUES),
+              "VecSetValues");
+  check_petsc(VecAssemblyBegin(qp.f), "VecAssemblyBegin");
+  check_petsc(VecAssemblyEnd(qp.f), "VecAssemblyEnd");
+  // b = Qᵀ f at the own candidate nodes (their columns are own rows).
+  check_petsc(VecCopy(qp.f, qp.b), "VecCopy");
+  PetscScalar* b = nullptr;
+  VecGetArray(qp.b, &b);
+  LoadVectorRange range;
+  int finite = 1;
+  for (int k = 0; k < dm.n_own_rows; ++k) {
+    range.largest = std::max(range.largest, std::abs(b[k]));
+    finite = finite && std::isfinite(b[k]);
+  }
+  for (const NodeTransform& t : qp.transforms) {
+    if (t.node >= dm.n_owned) continue;
+    Eigen::VectorXd part(t.columns.size());
+    for (std::size_t a = 0; a < t.columns.size(); ++a) part[a] = b[dm.local_row(t.columns[a])];
+    part = t.Q.transpose() * part;
+    for (std::size_t a = 0; a < t.columns.size(); ++a) b[dm.local_row(t.columns[a])] = part[a];
+  }
+  VecRestoreArray(qp.b, &b);
+  MPI_Allreduce(MPI_IN_PLACE, &range.largest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, &finite, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  range.finite = finite != 0;
+  // The bounds g_i, in the order of qp.bounded (a candidate's g holds its node's prescribed motion).
+  qp.upper.clear();
+  for (const NodeTransform& t : qp.transforms) {
+    if (t.node >= dm.n_owned) continue;
+    for (int a = 0; a < t.n_rows; ++a)
+      qp.upper.push_back(contact_row(model, model.candidates[t.first_candidate + a]).g);
+  }
+  return range;
+}
+
 DistributedBoundQp assemble_distributed_bound_qp(const DistributedModel& dm) {
   const Model& model = dm.local;
   const int dim = model.dim;
@@ -464,64 +503,27 @@ DistributedBoundQp assemble_distributed_bound_qp(const DistributedModel& dm) {
   off = {};
   MatSetOption(qp.A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE);
 
-  // f on the local free DOFs: the forces of this rank's faces and elements (in the DOF
-  // frames), then the prescribed displacements' share; summed over the ranks by PETSc.
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(model.n_free);
-  add_force_loads(model, f);
   double largest = 0;
   bool finite = true;
-  add_elements(dm, qp, f, largest, finite);
+  add_elements(dm, qp, largest, finite);
   check_petsc(MatAssemblyBegin(qp.A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check_petsc(MatAssemblyEnd(qp.A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   MatSetOption(qp.A, MAT_SYMMETRIC, PETSC_TRUE);
   MatSetOption(qp.A, MAT_SPD, PETSC_TRUE);
+  double largest_k = largest;
+  int k_finite = finite;
+  MPI_Allreduce(MPI_IN_PLACE, &largest_k, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, &k_finite, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
 
   check_petsc(MatCreateVecs(qp.A, &qp.b, &qp.f), "MatCreateVecs");
-  check_petsc(VecSet(qp.f, 0.0), "VecSet");
-  std::vector<PetscInt> rows;
-  std::vector<PetscScalar> values;
-  for (int k = 0; k < model.n_free; ++k)
-    if (f[k] != 0) {
-      rows.push_back(dm.row_of_free[k]);
-      values.push_back(f[k]);
-    }
-  check_petsc(VecSetValues(qp.f, static_cast<PetscInt>(rows.size()), rows.data(), values.data(), ADD_VALUES),
-              "VecSetValues");
-  check_petsc(VecAssemblyBegin(qp.f), "VecAssemblyBegin");
-  check_petsc(VecAssemblyEnd(qp.f), "VecAssemblyEnd");
-  // b = Qᵀ f at the own candidate nodes (their columns are own rows).
-  check_petsc(VecCopy(qp.f, qp.b), "VecCopy");
-  PetscScalar* b = nullptr;
-  VecGetArray(qp.b, &b);
-  double largest_f = 0;
-  bool f_finite = true;
-  for (int k = 0; k < dm.n_own_rows; ++k) {
-    largest_f = std::max(largest_f, std::abs(b[k]));
-    f_finite = f_finite && std::isfinite(b[k]);
-  }
+  // The bounded rows: row a of a node's group bounds its variable a (the first rows of T are
+  // the group's rows of B); their bounds follow the loads (set_load_vectors).
   for (const NodeTransform& t : qp.transforms) {
     if (t.node >= dm.n_owned) continue;
-    Eigen::VectorXd part(t.columns.size());
-    for (std::size_t a = 0; a < t.columns.size(); ++a) part[a] = b[dm.local_row(t.columns[a])];
-    part = t.Q.transpose() * part;
-    for (std::size_t a = 0; a < t.columns.size(); ++a) b[dm.local_row(t.columns[a])] = part[a];
+    for (int a = 0; a < t.n_rows; ++a) qp.bounded.push_back(dm.row_of_free[t.columns[a]]);
   }
-  VecRestoreArray(qp.b, &b);
-  double extremes[2] = {largest, largest_f};
-  int finites[2] = {finite, f_finite};
-  MPI_Allreduce(MPI_IN_PLACE, extremes, 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-  MPI_Allreduce(MPI_IN_PLACE, finites, 2, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-  refuse_unrepresentable(model, extremes[0], finites[0], extremes[1], finites[1]);
-
-  // The bounds: row a of a node's group bounds its variable a (the first rows of T are the
-  // group's rows of B).
-  for (const NodeTransform& t : qp.transforms) {
-    if (t.node >= dm.n_owned) continue;
-    for (int a = 0; a < t.n_rows; ++a) {
-      qp.bounded.push_back(dm.row_of_free[t.columns[a]]);
-      qp.upper.push_back(contact_row(model, model.candidates[t.first_candidate + a]).g);
-    }
-  }
+  const LoadVectorRange f = set_load_vectors(dm, qp);
+  refuse_unrepresentable(model, largest_k, k_finite, f.largest, f.finite);
   const RigidMotions rigid(dm);
   add_near_null_space(dm, qp, rigid);
   add_coarse_space(dm, qp, rigid);

@@ -66,4 +66,14 @@ struct DistributedBoundQp {
 // leave double precision (the serial assemble_qp's checks).
 DistributedBoundQp assemble_distributed_bound_qp(const DistributedModel& model);
 
+// f, b = Qᵀ f and the bounds g for the model's loads as they stand (local.prescribed and
+// local.nodal_force): at assembly, and again at each load step once set_step_loads() has set
+// them — A, its hierarchy and the bounded rows stay. Collective; f's largest magnitude over the
+// ranks and whether it is finite, for refuse_unrepresentable().
+struct LoadVectorRange {
+  double largest = 0;
+  bool finite = true;
+};
+LoadVectorRange set_load_vectors(const DistributedModel& model, DistributedBoundQp& qp);
+
 }  // namespace contactqp::detail

@@ -1,11 +1,13 @@
 // run_scene() with each process holding only its part of everything that grows with the mesh
 // (docs/petsc.md, "Distributed runs"): the mesh, the model, A = QᵀKQ, the vectors and the
-// ParaView output. Taken for the petsc backend under mpirun (or with RunOptions::distributed);
+// ParaView output; load steps along the path on the same A and hierarchy. Taken for the petsc
+// backend under mpirun (or with RunOptions::distributed);
 // the report is run_scene()'s, the summary and the result files on rank 0, and every rank writes
 // its piece of the .pvtu through RunReport::write_pieces. Registered with run_scene() at the end.
 #include <mpi.h>
 
 #include <algorithm>
+#include <functional>
 #include <sstream>
 
 #include "backend_options.hpp"
@@ -18,6 +20,8 @@
 #include "contactqp/processes.hpp"
 #include "contactqp/solve.hpp"
 #include "distributed_post.hpp"
+#include "fe/stiffness_matrix.hpp"
+#include "model/model_parts.hpp"
 #include "mpi.hpp"
 #include "qp/builtins.hpp"
 #include "run/distributed_run.hpp"
@@ -98,13 +102,14 @@ SolveResult solve_result(const DistributedPdasResult& solved, const DistributedM
 // Whether run_scene() goes this way: the petsc backend (with contact, or --no-contact: one
 // linear solve by the same KSP and hierarchy, the contact solve's reference) on a one-body
 // scene, under mpirun or with options.distributed (the CLI's default). On one process only
-// what this path models goes this way: a frictionless scene without load steps; the others keep
-// the one-process path (docs/architecture.md, "Which path a scene takes"). Under mpirun they
-// come here and are refused below, since the one-process path would hold everything on every rank.
+// what this path models goes this way: a frictionless scene, with or without load steps; the
+// others keep the one-process path (docs/architecture.md, "Which path a scene takes"). Under
+// mpirun they come here and are refused below, since the one-process path would hold
+// everything on every rank.
 bool takes_distributed_run(const Scene& scene, const RunOptions& options) {
   if (scene.solver.backend != Backend::Petsc || !scene.bodies.empty() || !scene.pairs.empty()) return false;
   if (process_count() > 1) return true;
-  if (!options.distributed || !scene.steps.empty() || scene.friction_law() != FrictionLaw::None) return false;
+  if (!options.distributed || scene.friction_law() != FrictionLaw::None) return false;
   // A body loaded by forces alone may be one that only its contacts hold, which the one-process
   // path solves on its free motions (docs/extremes.md) and the distributed model refuses.
   const auto displaced = [](const LoadSpec& load) { return load.is<DisplacementLoad>(); };
@@ -117,12 +122,113 @@ bool takes_distributed_run(const Scene& scene, const RunOptions& options) {
   return true;
 }
 
+// One solve of the QP as it stands, certified: the status claims no more than the certificate
+// shows.
+struct CertifiedSolve {
+  DistributedPdasResult solved;
+  SolveResult result;
+  Certificate certificate;
+  DistributedSolution solution;
+};
+
+using Phase = std::function<void(const char* name)>;
+
+// `previous`: the load step before, whose hierarchy and answer this one starts from. `phase`
+// is called with "certify" between the solve and its certificate.
+CertifiedSolve solve_and_certify(const DistributedModel& model, const DistributedBoundQp& qp,
+                                 const DistributedPdasOptions& settings, bool verbose,
+                                 const DistributedPdasResult* previous, const Phase& phase) {
+  CertifiedSolve out;
+  DistributedPdasOptions solve_settings = settings;
+  solve_settings.residual = [&](Vec v, const std::vector<double>& mu) {
+    return distributed_kkt_residual(model, qp, v, mu);
+  };
+  out.solved = solve_distributed_pdas(qp, solve_settings, previous);
+  out.result = solve_result(out.solved, model, settings.tol, verbose);
+  out.solution = solution_of(model, qp, out.solved.v, out.solved.mu);
+  phase("certify");
+  Stopwatch clock;
+  out.certificate = certificate_from(
+      distributed_certificate_terms(model, qp, out.solution, out.solved.solver_of_A.get(), settings.tol));
+  // Without contact the certificate shows the penetration (as a one-process --no-contact run's
+  // does) and says nothing of the linear solve's status.
+  if (!settings.without_bounds) apply_certificate(out.result, out.certificate, settings.tol);
+  out.result.timings.add("certify", clock.seconds());
+  return out;
+}
+
+// What the summary and the result files say of a solution: the contact (on rank 0), the
+// reactions, and what this rank's ParaView piece needs. Collective.
+struct DistributedState {
+  std::shared_ptr<Eigen::VectorXd> local_u, own_lambda;
+  std::shared_ptr<std::vector<double>> own_pressure = std::make_shared<std::vector<double>>();
+  ContactSurface surface;
+  ContactSummary contact;
+  std::vector<Reaction> reactions;
+};
+
+DistributedState state_of(const DistributedModel& model, const DistributedSolution& solution) {
+  DistributedState state;
+  state.local_u = std::make_shared<Eigen::VectorXd>(local_free_values(model, solution.u));
+  state.own_lambda = std::make_shared<Eigen::VectorXd>(solution.lambda);
+  const Eigen::VectorXd displacement = full_displacement(model.local, *state.local_u);
+  state.surface = gather_contact_surface(model, solution.lambda);
+  state.contact = distributed_contact_summary(model, state.surface, displacement, *state.own_pressure);
+  state.reactions = distributed_reactions(model, *state.local_u, solution.lambda);
+  return state;
+}
+
+// The load path (docs/petsc.md, "Load steps on the distributed run"), frictionless: each step
+// sets the loads' shares scaled by its factors, then f, b and the bounds (A and its hierarchy
+// stay: the first step sets the hierarchy up, every later one starts from the answer before
+// it). Each step is certified within the solve phase. Ends at the first step that does not
+// converge, as the one-process path does. Collective.
+CertifiedSolve solve_load_steps(const Scene& scene, DistributedModel& model, DistributedBoundQp& qp,
+                                const DistributedPdasOptions& settings, RunReport& report) {
+  const std::vector<std::vector<double>> factors = load_factors(scene);
+  CertifiedSolve last;
+  Timings timings;
+  int iterations = 0;
+  for (std::size_t k = 0; k < factors.size(); ++k) {
+    const std::string& path = scene.steps[k].path;
+    set_step_loads(model.local, factors[k], path);
+    checkpoint();  // a conflict between two loads is found by the ranks that hold the node
+    const LoadVectorRange f = set_load_vectors(model, qp);
+    refuse_unrepresentable(model.local, 1.0, true, f.largest, f.finite);  // K was checked at assembly
+    Stopwatch clock;
+    CertifiedSolve step = solve_and_certify(model, qp, settings, scene.solver.verbose, k > 0 ? &last.solved : nullptr,
+                                            [](const char*) {});
+    StepReport out;
+    out.seconds = clock.seconds();
+    out.path = path;
+    for (std::size_t l = 0; l < model.local.scene.loads.size(); ++l)
+      if (!model.local.scene.loads[l].name.empty())
+        out.factors.emplace_back(model.local.scene.loads[l].name, factors[k][l]);
+    out.status = step.result.status;
+    out.message = step.result.message;
+    out.iterations = step.result.iterations;
+    out.diagnostics = step.result.diagnostics;
+    // Where the step's time went: the hierarchy's set-up (the first step's), the loop, the certificate.
+    for (const auto& [name, seconds] : step.result.timings.phases()) out.diagnostics[name + "_seconds"] = seconds;
+    DistributedState state = state_of(model, step.solution);
+    out.contact = std::move(state.contact);
+    out.reactions = std::move(state.reactions);
+    report.steps.push_back(std::move(out));
+    timings.merge(step.result.timings);
+    iterations += step.result.iterations;
+    last = std::move(step);
+    if (last.result.status != Status::Converged) break;  // a later step would start from a wrong state
+  }
+  last.result.timings = timings;
+  last.result.iterations = iterations;
+  return last;
+}
+
 // Collective. What run_scene() does, distributed.
 RunReport run_distributed(const Scene& scene, const RunOptions& options) {
   Stopwatch total;
   validate_options(scene.solver);
   // What the distributed path does not model yet, refused as the one-process path refuses it.
-  if (!scene.steps.empty()) refuse_steps_on_several_processes(scene.solver.backend);
   for (const LoadSpec& load : scene.loads)
     if (load.is<RigidForceLoad>())
       throw InputError(load.path + ".type",
@@ -165,32 +271,21 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
     report.timings.add("assemble", clock.seconds());
 
     phase("solve");
-    DistributedPdasOptions solve_settings = settings;
-    solve_settings.residual = [&](Vec v, const std::vector<double>& mu) {
-      return distributed_kkt_residual(*model, qp, v, mu);
-    };
-    DistributedPdasResult solved = solve_distributed_pdas(qp, solve_settings);
-    report.result = solve_result(solved, *model, settings.tol, scene.solver.verbose);
+    // Without contact the loads in full, as the one-process path solves them.
+    CertifiedSolve solved = scene.steps.empty() || options.no_contact
+                                ? solve_and_certify(*model, qp, settings, scene.solver.verbose, nullptr, phase)
+                                : solve_load_steps(scene, *model, qp, settings, report);
+    report.result = std::move(solved.result);
+    report.certificate = solved.certificate;
     report.timings.merge(report.result.timings);
-    solution = solution_of(*model, qp, solved.v, solved.mu);
-
-    phase("certify");
-    clock.restart();
-    report.certificate =
-        certificate_from(distributed_certificate_terms(*model, qp, solution, solved.solver_of_A.get(), settings.tol));
-    // Without contact the certificate shows the penetration (as a one-process --no-contact run's
-    // does) and says nothing of the linear solve's status.
-    if (!options.no_contact) apply_certificate(report.result, report.certificate, settings.tol);
-    report.timings.add("certify", clock.seconds());
+    solution = std::move(solved.solution);
   }  // A, its preconditioner and the PETSc vectors are freed here, before the output is made
 
   phase("postprocess");
   Stopwatch clock;
-  auto local_u = std::make_shared<Eigen::VectorXd>(local_free_values(*model, solution.u));
-  const Eigen::VectorXd displacement = full_displacement(model->local, *local_u);
-  const ContactSurface surface = gather_contact_surface(*model, solution.lambda);
-  auto own_pressure = std::make_shared<std::vector<double>>();
-  report.contact = distributed_contact_summary(*model, surface, displacement, *own_pressure);
+  DistributedState state = state_of(*model, solution);
+  report.contact = std::move(state.contact);
+  const ContactSurface& surface = state.surface;
   if (surface.model) {
     if (!options.no_contact) {
       report.hertz = compare_with_hertz(*surface.model, report.contact);
@@ -208,7 +303,7 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
     report.model = shape;
     report.qp = std::make_shared<QuadraticProgram>();
   }
-  report.reactions = distributed_reactions(*model, *local_u, solution.lambda);
+  report.reactions = std::move(state.reactions);
   report.timings.add("postprocess", clock.seconds());
 
   report.warnings = model->local.warnings;
@@ -217,8 +312,8 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
     report.warnings.push_back(std::to_string(report.contact.penetrating_non_candidates) +
                               " boundary nodes outside the candidate set penetrate an obstacle (by up to " +
                               format_value(report.contact.max_non_candidate_penetration) + "); raise contact.max_gap");
-  auto own_lambda = std::make_shared<Eigen::VectorXd>(solution.lambda);
-  report.write_pieces = [model, local_u, own_lambda, own_pressure](const std::string& path) {
+  report.write_pieces = [model, local_u = state.local_u, own_lambda = state.own_lambda,
+                         own_pressure = state.own_pressure](const std::string& path) {
     const Eigen::VectorXd moved = full_displacement(model->local, *local_u);
     const PieceArrays piece = piece_arrays(*model, moved, *local_u, *own_lambda, *own_pressure);
     write_pvtu(path, model->local.mesh, piece.arrays());

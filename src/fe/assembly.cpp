@@ -78,6 +78,34 @@ Eigen::MatrixXd dof_frame_rotated(const Model& model, const int* v, int npe, Eig
   rotate_to_dof_frames(model, v, npe, Ke);
   return Ke;
 }
+void set_step_loads(Model& model, const std::vector<double>& factors, const std::string& step) {
+  const int n = static_cast<int>(model.prescribed.size());
+  Eigen::VectorXd prescribed = Eigen::VectorXd::Zero(n), nodal_force = Eigen::VectorXd::Zero(n);
+  std::vector<int> prescribed_by(n, -1);  // the load that set each DOF
+  for (size_t l = 0; l < model.load_shares.size(); ++l) {
+    const LoadShare& share = model.load_shares[l];
+    nodal_force += factors[l] * share.nodal_force;
+    for (const auto& [dof, value] : share.prescribed) {
+      const double scaled = factors[l] * value;
+      const int other = prescribed_by[dof];
+      // The node by its place (a distributed run's part numbers its nodes its own way).
+      if (other >= 0 &&
+          std::abs(prescribed[dof] - scaled) > 1e-12 * std::max(std::abs(scaled), std::abs(prescribed[dof])))
+        throw InputError(step, "prescribes the node at " + format_point(model.mesh.nodes[dof / model.dim], model.dim) +
+                                   " by " + model.scene.loads[other].path + " and by " + model.scene.loads[l].path +
+                                   " to different values (" + format_value(prescribed[dof]) + " and " +
+                                   format_value(scaled) + "): scale them alike");
+      prescribed[dof] = scaled;
+      prescribed_by[dof] = static_cast<int>(l);
+    }
+  }
+  model.prescribed = prescribed;
+  model.nodal_force = nodal_force;
+  for (RigidSurface& surface : model.rigid_surfaces)
+    surface.force =
+        factors[surface.load] * *model.scene.loads[surface.load].as<RigidForceLoad>()->value[surface.component];
+}
+
 }  // namespace detail
 
 QuadraticProgram assemble_qp(Model& model, const std::vector<char>& elements) {
@@ -102,30 +130,7 @@ QuadraticProgram assemble_qp(Model& model, const std::vector<char>& elements) {
 }
 
 void apply_load_step(Model& model, QuadraticProgram& qp, const std::vector<double>& factors, const std::string& step) {
-  const int n = static_cast<int>(model.prescribed.size());
-  Eigen::VectorXd prescribed = Eigen::VectorXd::Zero(n), nodal_force = Eigen::VectorXd::Zero(n);
-  std::vector<int> prescribed_by(n, -1);  // the load that set each DOF
-  for (size_t l = 0; l < model.load_shares.size(); ++l) {
-    const LoadShare& share = model.load_shares[l];
-    nodal_force += factors[l] * share.nodal_force;
-    for (const auto& [dof, value] : share.prescribed) {
-      const double scaled = factors[l] * value;
-      const int other = prescribed_by[dof];
-      if (other >= 0 &&
-          std::abs(prescribed[dof] - scaled) > 1e-12 * std::max(std::abs(scaled), std::abs(prescribed[dof])))
-        throw InputError(step, "prescribes node " + std::to_string(dof / model.dim) + " by " +
-                                   model.scene.loads[other].path + " and by " + model.scene.loads[l].path +
-                                   " to different values (" + format_value(prescribed[dof]) + " and " +
-                                   format_value(scaled) + "): scale them alike");
-      prescribed[dof] = scaled;
-      prescribed_by[dof] = static_cast<int>(l);
-    }
-  }
-  model.prescribed = prescribed;
-  model.nodal_force = nodal_force;
-  for (RigidSurface& surface : model.rigid_surfaces)
-    surface.force =
-        factors[surface.load] * *model.scene.loads[surface.load].as<RigidForceLoad>()->value[surface.component];
+  detail::set_step_loads(model, factors, step);
   qp.f = detail::prescribed_forces(model);
   detail::add_force_loads(model, qp.f);
   detail::add_contact_rows(model, qp);  // the same B; g with this step's prescribed values

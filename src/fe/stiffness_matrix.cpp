@@ -204,11 +204,10 @@ void assemble_stiffness(const Model& model, const std::vector<char>& elements, E
   }
 }
 
-Eigen::VectorXd prescribed_forces(const Model& model) {
+void add_prescribed_forces(const Model& model, Eigen::VectorXd& f) {
   const Mesh& mesh = model.mesh;
   const std::vector<ElementLaw> laws = element_laws(model);
   const int npe = mesh.nodes_per_element(), dim = mesh.dim;
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(model.n_free);
   std::vector<Eigen::Vector3d> coordinates(npe);
   for (int e = 0; e < mesh.n_elements(); ++e) {
     const int* v = mesh.element(e);
@@ -231,6 +230,11 @@ Eigen::VectorXd prescribed_forces(const Model& model) {
       }
     }
   }
+}
+
+Eigen::VectorXd prescribed_forces(const Model& model) {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(model.n_free);
+  add_prescribed_forces(model, f);
   return f;
 }
 

@@ -27,7 +27,9 @@ Eigen::MatrixXd dof_frame_rotated(const Model& model, const int* v, int npe, Eig
 void refuse_unrepresentable(const Model& model, double largest_k, bool k_finite, double largest_f, bool f_finite);
 // −K_free,prescribed · u_prescribed over the free DOFs, for the model's prescribed values: the
 // prescribed displacements' share of f on its own, for a load step (apply_load_step). Only the
-// elements with a non-zero prescribed DOF are visited.
+// elements with a non-zero prescribed DOF are visited. add_prescribed_forces() subtracts the
+// same from f (a distributed run's part: this rank's elements, its local free DOFs).
 Eigen::VectorXd prescribed_forces(const Model& model);
+void add_prescribed_forces(const Model& model, Eigen::VectorXd& f);
 
 }  // namespace contactqp::detail

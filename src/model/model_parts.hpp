@@ -108,5 +108,15 @@ std::vector<int> point_load_nodes(const Scene& scene, const Mesh& mesh, std::vec
 // forces (point loads at point_nodes[l]) and the DOFs it prescribes, for the loads of
 // model.scene (global frame; displacement values along the DOF frames).
 std::vector<LoadShare> load_shares(const Model& model, const std::vector<int>& point_nodes);
+// The same with each boundary's nodes from `nodes_of` and load l's nodal forces from
+// `nodal_force(l)` (a distributed run's part: its faces' and elements' forces, the nodes of a
+// boundary whichever rank holds its faces).
+std::vector<LoadShare> load_shares(const Model& model, const NodesOfBoundary& nodes_of,
+                                   const std::function<Eigen::VectorXd(std::size_t load)>& nodal_force);
+
+// ../fe/assembly.cpp: model.prescribed and model.nodal_force for one load step, the loads'
+// shares scaled by `factors` (apply_load_step's first half; the rigid surfaces' forces too).
+// InputError naming `step` when two loads then prescribe one DOF to different values.
+void set_step_loads(Model& model, const std::vector<double>& factors, const std::string& step);
 
 }  // namespace contactqp::detail

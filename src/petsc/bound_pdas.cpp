@@ -152,6 +152,7 @@ class KeptSolverOfA final : public SolverOfA {
     return true;
   }
   long long iterations() const override { return state_->iterations; }
+  const std::shared_ptr<FineState>& state() const { return state_; }
 
  private:
   std::shared_ptr<FineState> state_;
@@ -442,6 +443,7 @@ BoundPdasResult& BoundPdasResult::operator=(BoundPdasResult&& other) noexcept {
   p1_krylov_iterations = other.p1_krylov_iterations;
   preconditioner_setups = other.preconditioner_setups;
   active = other.active;
+  active_bounds = std::move(other.active_bounds);
   residual = other.residual;
   setup_seconds = other.setup_seconds;
   iterate_seconds = other.iterate_seconds;
@@ -457,14 +459,13 @@ BoundPdasResult::~BoundPdasResult() {
   if (v && !petsc_finalized()) VecDestroy(&v);
 }
 
-PetscErrorCode solve_bound_pdas(const PetscBoundQp& qp, const BoundPdasOptions& options, BoundPdasResult* result,
-                                bool* options_error) {
+namespace {
+
+// The hierarchy on A and the loop's KSP around it, once per A (the set-up of solve_bound_pdas).
+PetscErrorCode set_up(const PetscBoundQp& qp, const BoundPdasOptions& options, FineState* fine, BoundPdasResult* result,
+                      bool* options_error) {
   PetscFunctionBeginUser;
-  *options_error = false;
   const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(qp.A));
-  auto fine = std::make_shared<FineState>();
-  fine->tol = options.tol;
-  Stopwatch clock;
   // The hierarchy on A, once; its finest smoother works on the step's W (the shell), its
   // Jacobi and the rest on A.
   PetscCall(fine->level.mask.create(qp.A));
@@ -479,7 +480,6 @@ PetscErrorCode solve_bound_pdas(const PetscBoundQp& qp, const BoundPdasOptions& 
     *options_error = true;
     PetscFunctionReturn(code);
   }
-  result->preconditioner_setups = 1;
   // The finest level's Chebyshev bounds from A itself (an empty mask), so that they hold for
   // every W: one application now, before any row is fixed.
   {
@@ -513,14 +513,43 @@ PetscErrorCode solve_bound_pdas(const PetscBoundQp& qp, const BoundPdasOptions& 
     PetscCall(KSPSetInitialGuessNonzero(level.ksp, PETSC_TRUE));
   }
   if (options.truncate) PetscCall(fine->truncation.collect(fine->inner, qp.A));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+PetscErrorCode solve_bound_pdas(const PetscBoundQp& qp, const BoundPdasOptions& options, BoundPdasResult* result,
+                                bool* options_error, const WarmStart* start) {
+  PetscFunctionBeginUser;
+  *options_error = false;
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(qp.A));
+  // A load step after another on the same A: that solve's hierarchy, KSP and answer.
+  const auto kept = start ? std::dynamic_pointer_cast<KeptSolverOfA>(start->solver_of_A) : nullptr;
+  const bool warm = kept && start->v && start->active_bounds.size() == qp.bounded.size();
+  Stopwatch clock;
+  std::shared_ptr<FineState> fine;
+  if (warm) {
+    fine = kept->state();
+    result->multigrid = start->multigrid;
+  } else {
+    fine = std::make_shared<FineState>();
+    fine->tol = options.tol;
+    PetscCall(set_up(qp, options, fine.get(), result, options_error));
+    result->preconditioner_setups = 1;
+  }
   result->setup_seconds = clock.seconds();
 
   clock.restart();
   PetscCall(MatCreateVecs(qp.A, &result->v, nullptr));
-  PetscCall(VecSet(result->v, 0.0));
   std::vector<char> active(qp.bounded.size(), 0);
-  if (options.p1_start && qp.coarse_interpolation && qp.coarse_bounded.size() == qp.bounded.size())
-    PetscCall(p1_start(qp, *fine, options, result->v, active, result));
+  if (warm) {
+    PetscCall(VecCopy(start->v, result->v));
+    active = start->active_bounds;
+  } else {
+    PetscCall(VecSet(result->v, 0.0));
+    if (options.p1_start && qp.coarse_interpolation && qp.coarse_bounded.size() == qp.bounded.size())
+      PetscCall(p1_start(qp, *fine, options, result->v, active, result));
+  }
 
   LevelProblem level;
   level.A = qp.A;
@@ -544,6 +573,7 @@ PetscErrorCode solve_bound_pdas(const PetscBoundQp& qp, const BoundPdasOptions& 
   result->linear_solves = outcome.steps;
   result->residual = outcome.residual;
   result->active = count_over_ranks(std::count(active.begin(), active.end(), 1), comm);
+  result->active_bounds = active;
   result->update_seconds = fine->truncation.update_seconds();
   result->iterate_seconds = clock.seconds();
   result->method = "pdas, cg + " + result->multigrid.method + (result->p1_steps > 0 ? ", P1 start" : "") +

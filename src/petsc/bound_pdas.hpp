@@ -86,8 +86,9 @@ struct BoundPdasResult {
   long long krylov_iterations = 0, linear_solves = 0;
   int p1_steps = 0;  // active-set steps of the P1 start (0: none)
   long long p1_krylov_iterations = 0;
-  int preconditioner_setups = 0;  // 1: the hierarchy
-  long long active = 0;           // bounds active at the end, all ranks
+  int preconditioner_setups = 0;    // 1: the hierarchy
+  long long active = 0;             // bounds active at the end, all ranks
+  std::vector<char> active_bounds;  // this rank's: 1 for each of its bounds active at the end
   double residual = 0;
   double setup_seconds = 0, iterate_seconds = 0, p1_seconds = 0, update_seconds = 0;
   MultigridStatistics multigrid;
@@ -105,7 +106,17 @@ struct BoundPdasResult {
 // Collective. Numerical failures come back in status and message; PETSc errors as the code
 // (the caller turns them into its message; an error from KSPSetFromOptions or the PC's
 // set-up is the user's options: `options_error` is set then).
+// Load steps on one A: the solve before, of the same A and bounded rows with another b and other
+// bounds, lends its hierarchy and KSP (no set-up: preconditioner_setups 0) and its answer, where
+// the loop starts (no P1 start).
+struct WarmStart {
+  std::shared_ptr<SolverOfA> solver_of_A;  // that solve's (BoundPdasResult::solver_of_A)
+  Vec v = nullptr;                         // its v, copied
+  std::vector<char> active_bounds;         // its active set on this rank's bounds
+  MultigridStatistics multigrid;           // its hierarchy's, reported again
+};
+
 PetscErrorCode solve_bound_pdas(const PetscBoundQp& qp, const BoundPdasOptions& options, BoundPdasResult* result,
-                                bool* options_error);
+                                bool* options_error, const WarmStart* start = nullptr);
 
 }  // namespace contactqp::detail

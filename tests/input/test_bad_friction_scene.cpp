@@ -117,7 +117,8 @@ TEST_CASE("load steps whose loads prescribe one DOF differently name the step", 
       {"name": "a", "type": "displacement", "boundary": "top", "value": [null, -0.016]},
       {"name": "b", "type": "displacement", "boundary": "top", "value": [null, -0.016]}],
       "steps": [{"factors": {"a": 1, "b": 1}}, {"factors": {"b": 0.5}}]})"));
-  CHECK_THROWS_WITH(contactqp::run_scene(scene, RunOptions{}), Catch::Matchers::Contains("steps[1] prescribes node"));
+  CHECK_THROWS_WITH(contactqp::run_scene(scene, RunOptions{}),
+                    Catch::Matchers::Contains("steps[1] prescribes the node at"));
 }
 
 // (No quotes in the name: ctest passes it to Catch2 as a test spec, where they quote.)

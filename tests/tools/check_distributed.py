@@ -8,7 +8,8 @@ u and the contact forces at every node (the ParaView arrays, matched by the node
 which are the same to the bit), the force, a (or b), p0, J; that each .pvtu opens in VTK
 (python3-vtk9) with exactly the one-process .vtu's points, cells and arrays; one summary, no
 temporary files; bad input under mpirun (a mesh file rank 0 cannot read, a bad value) ends
-every rank with exit 2 and one line.
+every rank with exit 2 and one line. A scene with load steps: each step's force, a or b and
+reactions too, and the multigrid hierarchy set up once for the whole path.
 
 usage: check_distributed.py CONTACTQP MPIEXEC SCENE WORKDIR [RANKS...]"""
 import json
@@ -52,6 +53,24 @@ def run(command, env):
 
 def relative(a, b):
     return numpy.linalg.norm(a - b) / max(numpy.linalg.norm(b), 1e-300)
+
+
+def check_steps(label, serial, steps, check):
+    """A load path: every step as one process's, its force, half-width or contact radius, peak
+    pressure and reactions to TOL; the hierarchy set up once (at the first step), kept after."""
+    check(len(steps) == len(serial), "%s: %d load steps, one process %d" % (label, len(steps), len(serial)))
+    for k, (s, r) in enumerate(zip(serial, steps)):
+        name = "%s: step %d" % (label, k + 1)
+        check(r["status"] == "converged" and r["factors"] == s["factors"],
+              "%s: %s at factors %s" % (name, r["status"], r["factors"]))
+        for key in ("total_force", "half_width", "contact_radius"):
+            if key in s:
+                check(abs(r[key] - s[key]) <= TOL * max(abs(s[key]), 1e-300),
+                      "%s: %s %.10g against %.10g" % (name, key, r[key], s[key]))
+        for a, b in zip(s["reactions"], r["reactions"]):
+            check(relative(numpy.array(b["force"]), numpy.array(a["force"])) <= TOL, "%s: reaction %s" % (name, a["load"]))
+        setups = r["diagnostics"].get("preconditioner_setups", 0)
+        check(setups == (1 if k == 0 else 0), "%s: %d preconditioner set-ups" % (name, setups))
 
 
 def main(cli, mpiexec, scene, workdir, *ranks):
@@ -114,6 +133,7 @@ def main(cli, mpiexec, scene, workdir, *ranks):
                     check(abs(a - b) <= TOL * max(abs(b), 1e-12), "%s: hertz %s %.10g against %.10g" % (label, key, a, b))
         for s, r in zip(serial["reactions"], result["reactions"]):
             check(relative(numpy.array(r["force"]), numpy.array(s["force"])) <= TOL, "%s: reaction %s" % (label, s["load"]))
+        check_steps(label, serial.get("steps", []), result.get("steps", []), check)
         their_points, theirs, their_cells = read(path(stem + ".pvtu"))
         check(their_points == points, "%s: the .pvtu has the one-process .vtu's points" % label)
         check(their_cells == cells, "%s: %d cells in the pieces, %d in the .vtu" % (label, their_cells, cells))
