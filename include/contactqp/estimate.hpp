@@ -39,7 +39,9 @@ struct ErrorEstimate {
   // otherwise (force loads, friction, quadratic elements).
   std::optional<double> force_relative;
   Eigen::VectorXd indicator;  // η_T per element (sqrt of energy), n_elements; Σ η_T² = η²
-  double seconds = 0;         // the estimate's own time
+  // The largest η_T of the whole mesh (a distributed run's indicator holds one rank's elements).
+  double max_indicator = 0;
+  double seconds = 0;  // the estimate's own time
 };
 
 // The estimate of a solution: `u` the QP's free DOFs, `lambda` one multiplier per contact row

@@ -115,7 +115,8 @@ std::vector<PointArray> solution_arrays(const Model& model, const Eigen::VectorX
 std::string vtu_piece(const Mesh& mesh, const std::vector<PointArray>& arrays,
                       const std::vector<PointArray>& cell_arrays = {});
 // The parallel file (.pvtu) that joins pieces with these arrays (their values are not read):
-// `pieces` are the piece files' names relative to the .pvtu.
-std::string pvtu_document(const std::vector<PointArray>& arrays, const std::vector<std::string>& pieces);
+// `pieces` are the piece files' names relative to the .pvtu; `cell_arrays` the pieces' cell data.
+std::string pvtu_document(const std::vector<PointArray>& arrays, const std::vector<std::string>& pieces,
+                          const std::vector<PointArray>& cell_arrays = {});
 
 }  // namespace contactqp

@@ -10,6 +10,7 @@
 #include "contactqp/errors.hpp"
 #include "contactqp/phases.hpp"
 #include "model/model_parts.hpp"
+#include "run/distributed_run.hpp"
 #include "world.hpp"
 
 namespace contactqp::detail {
@@ -182,15 +183,29 @@ DistributedModel build_distributed_model(const Scene& scene, const BuildOptions&
   Stopwatch clock;
   // What needs the whole body is checked on the coarse mesh, before it is split: the scene's
   // names, conflicting conditions and rigid motions (the refined mesh has the same boundaries).
-  const auto check_coarse = [&scene](const Mesh& coarse) {
+  const auto check_coarse = [&scene, &model](const Mesh& coarse) {
     check_mesh_names(scene, coarse);
     Model probe;
     probe.mesh = coarse;
     probe.scene = scene;
     probe.scene.transform = TransformSpec{};
     probe.dim = coarse.dim;
+    probe.max_gap = model.max_gap;
     apply_displacement_conditions(probe, scene, Eigen::Matrix3d::Identity());
-    check_rigid_motions(probe);
+    // A free motion the load drives and no row sees is refused as one process refuses it; one
+    // that the contacts hold, which one process solves on its free modes, is not solved here yet.
+    probe.candidates = select_candidates(coarse, scene.obstacles, scene.contact.boundary, probe.max_gap);
+    remove_prescribed_candidates(probe);
+    const Eigen::MatrixXd held = motions_held_by_contact(probe, [&] {
+      std::vector<std::string> ignored;
+      return Eigen::VectorXd(nodal_forces(probe.scene, coarse, point_load_nodes(scene, coarse, ignored)));
+    });
+    if (held.cols() > 0) {
+      const RigidFreedom freedom = rigid_freedom(probe);
+      for (const PartFreedom& part : freedom.parts)
+        if (part.null.cols() > 0)
+          refuse_held_by_contact_on_several_processes(Backend::Petsc, describe_motion(probe, part, part.null.col(0)));
+    }
   };
   MeshPart part = distribute_body_mesh(scene, model.max_gap, options, check_coarse);
   model.mesh = std::move(part.mesh);

@@ -254,11 +254,12 @@ PieceArrays piece_arrays(const DistributedModel& model, const Eigen::VectorXd& d
   return piece;
 }
 
-void write_pvtu(const std::string& pvtu_path, const Mesh& mesh, const std::vector<PointArray>& arrays) {
+void write_pvtu(const std::string& pvtu_path, const Mesh& mesh, const std::vector<PointArray>& arrays,
+                const std::vector<PointArray>& cell_arrays) {
   namespace fs = std::filesystem;
   const int rank = world_rank(), ranks = world_size();
   if (ranks == 1 && fs::path(pvtu_path).extension() != ".pvtu") {
-    write_file_atomically(pvtu_path, vtu_piece(mesh, arrays));
+    write_file_atomically(pvtu_path, vtu_piece(mesh, arrays, cell_arrays));
     return;
   }
   const fs::path target(pvtu_path);
@@ -269,14 +270,14 @@ void write_pvtu(const std::string& pvtu_path, const Mesh& mesh, const std::vecto
   try {
     // Each step ends where the ranks agree that none failed (run/phases.hpp).
     staged = std::make_unique<TemporaryFile>(piece);
-    staged->write(vtu_piece(mesh, arrays));
+    staged->write(vtu_piece(mesh, arrays, cell_arrays));
     checkpoint();
     staged->commit();
     checkpoint();
     if (rank == 0) {
       std::vector<std::string> pieces;
       for (int r = 0; r < ranks; ++r) pieces.push_back(piece_name(r));
-      write_file_atomically(pvtu_path, pvtu_document(arrays, pieces));
+      write_file_atomically(pvtu_path, pvtu_document(arrays, pieces, cell_arrays));
     }
     checkpoint();
   } catch (...) {

@@ -57,6 +57,8 @@ PieceArrays piece_arrays(const DistributedModel& model, const Eigen::VectorXd& d
 // all pieces appear, and then the .pvtu, or none of them (every rank removes its piece when one
 // failed). Collective. On one process a path not ending in .pvtu gets the one piece itself: a
 // whole .vtu, as the one-process path writes it.
-void write_pvtu(const std::string& pvtu_path, const Mesh& mesh, const std::vector<PointArray>& arrays);
+// `cell_arrays` at this rank's elements (error_indicator).
+void write_pvtu(const std::string& pvtu_path, const Mesh& mesh, const std::vector<PointArray>& arrays,
+                const std::vector<PointArray>& cell_arrays = {});
 
 }  // namespace contactqp::detail

@@ -19,6 +19,7 @@
 #include "contactqp/phases.hpp"
 #include "contactqp/processes.hpp"
 #include "contactqp/solve.hpp"
+#include "distributed_estimate.hpp"
 #include "distributed_post.hpp"
 #include "fe/stiffness_matrix.hpp"
 #include "model/model_parts.hpp"
@@ -305,6 +306,19 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
   }
   report.reactions = std::move(state.reactions);
   report.timings.add("postprocess", clock.seconds());
+  // The strain energy and, unless the scene turns it off, the error estimate (docs/estimate.md),
+  // each rank on its part: as the one-process run adds them after the post-processing.
+  clock.restart();
+  auto indicator = std::make_shared<Eigen::VectorXd>();
+  if (scene.estimate) {
+    report.error_estimate =
+        distributed_error_estimate(*model, *state.local_u, *state.own_pressure, !options.no_contact);
+    report.strain_energy = report.error_estimate->strain_energy;
+    *indicator = report.error_estimate->indicator;
+  } else {
+    report.strain_energy = distributed_strain_energy(*model, *state.local_u);
+  }
+  report.timings.add("estimate", clock.seconds());
 
   report.warnings = model->local.warnings;
   report.warnings.insert(report.warnings.end(), report.result.warnings.begin(), report.result.warnings.end());
@@ -313,10 +327,13 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
                               " boundary nodes outside the candidate set penetrate an obstacle (by up to " +
                               format_value(report.contact.max_non_candidate_penetration) + "); raise contact.max_gap");
   report.write_pieces = [model, local_u = state.local_u, own_lambda = state.own_lambda,
-                         own_pressure = state.own_pressure](const std::string& path) {
+                         own_pressure = state.own_pressure, indicator](const std::string& path) {
     const Eigen::VectorXd moved = full_displacement(model->local, *local_u);
     const PieceArrays piece = piece_arrays(*model, moved, *local_u, *own_lambda, *own_pressure);
-    write_pvtu(path, model->local.mesh, piece.arrays());
+    std::vector<PointArray> cells;
+    if (indicator->size() == model->local.mesh.n_elements())
+      cells.push_back({"error_indicator", 1, indicator->data(), {}});
+    write_pvtu(path, model->local.mesh, piece.arrays(), cells);
   };
   Timings timings;
   for (const auto& [name, seconds] : report.timings.phases())

@@ -211,7 +211,7 @@ json error_estimate_json(const ErrorEstimate& e) {
               {"recovery", number(e.recovery)},
               {"contact", number(e.contact)},
               {"friction", number(e.friction)},
-              {"max_indicator", number(e.indicator.size() ? e.indicator.maxCoeff() : 0.0)},
+              {"max_indicator", number(e.max_indicator)},
               {"method", "recovered stress (nodal averages) + contact complementarity, penetration and friction terms"},
               {"seconds", number(e.seconds)}};
   if (e.force_relative) out["force_relative"] = number(*e.force_relative);

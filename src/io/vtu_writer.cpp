@@ -203,7 +203,8 @@ std::string vtu_piece(const Mesh& mesh, const std::vector<PointArray>& arrays,
   return out;
 }
 
-std::string pvtu_document(const std::vector<PointArray>& arrays, const std::vector<std::string>& pieces) {
+std::string pvtu_document(const std::vector<PointArray>& arrays, const std::vector<std::string>& pieces,
+                          const std::vector<PointArray>& cell_arrays) {
   std::string out = "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"";
   out += byte_order();
   out += "\" header_type=\"UInt64\">\n  <PUnstructuredGrid GhostLevel=\"0\">\n";
@@ -211,8 +212,16 @@ std::string pvtu_document(const std::vector<PointArray>& arrays, const std::vect
   for (const PointArray& array : arrays)
     out += "      <PDataArray type=\"Float64\" Name=\"" + array.name + "\" NumberOfComponents=\"" +
            std::to_string(array.components) + "\"/>\n";
+  out += "    </PPointData>\n";
+  if (!cell_arrays.empty()) {
+    out += "    <PCellData>\n";
+    for (const PointArray& array : cell_arrays)
+      out += "      <PDataArray type=\"Float64\" Name=\"" + array.name + "\" NumberOfComponents=\"" +
+             std::to_string(array.components) + "\"/>\n";
+    out += "    </PCellData>\n";
+  }
   out +=
-      "    </PPointData>\n    <PPoints>\n      <PDataArray type=\"Float64\" Name=\"Points\" "
+      "    <PPoints>\n      <PDataArray type=\"Float64\" Name=\"Points\" "
       "NumberOfComponents=\"3\"/>\n"
       "    </PPoints>\n    <PCells>\n"
       "      <PDataArray type=\"Int64\" Name=\"connectivity\" NumberOfComponents=\"1\"/>\n"

@@ -13,6 +13,7 @@
 
 #include "contact/contact.hpp"
 #include "contactqp/timer.hpp"
+#include "estimate_sums.hpp"
 #include "fe/shape_functions.hpp"
 
 namespace contactqp {
@@ -102,9 +103,11 @@ struct VolumeParts {
 
 // The strain energy and, with `recovery`, each element's recovery term. Two passes over the
 // elements: the nodal stresses (measure-weighted averages of the elements' stresses at the
-// node), then the integral of the difference.
+// node, over every part's elements that hold it: `sum_shared`), then the integral of the
+// difference.
 template <int dim>
-VolumeParts volume_parts(const Model& model, const Eigen::VectorXd& displacement, bool recovery) {
+VolumeParts volume_parts(const Model& model, const Eigen::VectorXd& displacement, bool recovery,
+                         const detail::SumOverShared& sum_shared) {
   const Mesh& mesh = model.mesh;
   const int npe = mesh.nodes_per_element(), n_elements = mesh.n_elements();
   const double thickness = dim == 2 ? model.scene.body.thickness : 1.0;
@@ -151,6 +154,10 @@ VolumeParts volume_parts(const Model& model, const Eigen::VectorXd& displacement
         weight[v[i]] += measure;
       }
     }
+    if (sum_shared) {
+      sum_shared(recovered.data(), kVoigt<dim>);
+      sum_shared(weight.data(), 1);
+    }
     for (int k = 0; k < mesh.n_nodes(); ++k)
       if (weight[k] > 0) recovered.col(k) /= weight[k];
     parts.squared = Eigen::VectorXd::Zero(n_elements);
@@ -180,7 +187,8 @@ VolumeParts volume_parts(const Model& model, const Eigen::VectorXd& displacement
 // integral of the linear difference d = σ* − σ_h in closed form, ∫_T dᵀ C⁻¹ d =
 // |T| / ((dim + 1)(dim + 2)) · (Σ_i d_iᵀ C⁻¹ d_i + (Σ_i d_i)ᵀ C⁻¹ (Σ_i d_i)), d_i at the vertices.
 template <int dim>
-VolumeParts linear_volume_parts(const Model& model, const Eigen::VectorXd& displacement, bool recovery) {
+VolumeParts linear_volume_parts(const Model& model, const Eigen::VectorXd& displacement, bool recovery,
+                                const detail::SumOverShared& sum_shared) {
   const Mesh& mesh = model.mesh;
   const int n_elements = mesh.n_elements();
   const double thickness = dim == 2 ? model.scene.body.thickness : 1.0;
@@ -218,6 +226,10 @@ VolumeParts linear_volume_parts(const Model& model, const Eigen::VectorXd& displ
       recovered.col(mesh.element(e)[i]) += measure[e] * stress.col(e);
       weight[mesh.element(e)[i]] += measure[e];
     }
+  if (sum_shared) {
+    sum_shared(recovered.data(), kVoigt<dim>);
+    sum_shared(weight.data(), 1);
+  }
   for (int k = 0; k < mesh.n_nodes(); ++k)
     if (weight[k] > 0) recovered.col(k) /= weight[k];
   parts.squared = Eigen::VectorXd::Zero(n_elements);
@@ -235,12 +247,13 @@ VolumeParts linear_volume_parts(const Model& model, const Eigen::VectorXd& displ
   return parts;
 }
 
-VolumeParts volume_parts(const Model& model, const Eigen::VectorXd& displacement, bool recovery) {
+VolumeParts volume_parts(const Model& model, const Eigen::VectorXd& displacement, bool recovery,
+                         const detail::SumOverShared& sum_shared = {}) {
   if (model.mesh.order == 1)
-    return model.dim == 2 ? linear_volume_parts<2>(model, displacement, recovery)
-                          : linear_volume_parts<3>(model, displacement, recovery);
-  return model.dim == 2 ? volume_parts<2>(model, displacement, recovery)
-                        : volume_parts<3>(model, displacement, recovery);
+    return model.dim == 2 ? linear_volume_parts<2>(model, displacement, recovery, sum_shared)
+                          : linear_volume_parts<3>(model, displacement, recovery, sum_shared);
+  return model.dim == 2 ? volume_parts<2>(model, displacement, recovery, sum_shared)
+                        : volume_parts<3>(model, displacement, recovery, sum_shared);
 }
 
 // A face's vertices, sorted: the key that finds it among an element's faces.
@@ -315,17 +328,17 @@ struct ContactParts {
 // The contact faces' terms, added to their elements' squared indicators. A face counts for an
 // obstacle or a pair when each of its nodes has a row of it: the candidates reach beyond the
 // zone in contact (contact.max_gap), so the faces where p_h and s_h change hands are among them.
-ContactParts add_contact_terms(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
-                               const Eigen::VectorXd& displacement, const Eigen::VectorXd& lambda,
+// `pressure` and `slack` per row of model.candidates (estimate_sums.hpp).
+ContactParts add_contact_terms(const Model& model, const std::vector<double>& pressure, const Eigen::VectorXd& slack,
+                               const FrictionBlock* friction_rows, const Eigen::VectorXd& displacement,
                                const FrictionFields* friction, Eigen::VectorXd& squared) {
   ContactParts parts;
-  const int m = qp.n_constraints();
-  if (m == 0 || lambda.size() != m || static_cast<int>(model.candidates.size()) != m) return parts;
+  const int m = static_cast<int>(model.candidates.size());
+  if (m == 0 || static_cast<int>(pressure.size()) != m || slack.size() != m) return parts;
+  if (!friction_rows) friction = nullptr;
   const Mesh& mesh = model.mesh;
   const int dim = model.dim;
   const double thickness = dim == 2 ? model.scene.body.thickness : 1.0;
-  const std::vector<double> pressure = nodal_pressures(model, qp, lambda);
-  const Eigen::VectorXd slack = qp.g - qp.B * u;
   // An obstacle's rows by their obstacle (≥ 0), a pair's by −1 − pair.
   const auto target_of = [](const Candidate& c) { return c.pair >= 0 ? -1 - c.pair : c.obstacle; };
   std::unordered_map<int, std::vector<int>> rows_of_node;
@@ -401,8 +414,8 @@ ContactParts add_contact_terms(const Model& model, const QuadraticProgram& qp, c
         // The bound's density: Coulomb's μ p; Tresca's threshold over the tributary, or the
         // traction itself where the tributary is 0 (a vertex of a 6-node face in 3D).
         const double tributary = model.candidates[i].tributary * thickness;
-        if (qp.friction.law == FrictionLaw::Coulomb)
-          bound[k] = qp.friction.coefficient[i] * p[k];
+        if (friction_rows->law == FrictionLaw::Coulomb)
+          bound[k] = friction_rows->coefficient[i] * p[k];
         else
           bound[k] = tributary > 0 ? friction->bound[i] / tributary : q[k].norm();
         bound[k] = std::max(bound[k], q[k].norm());
@@ -445,18 +458,32 @@ ContactParts add_contact_terms(const Model& model, const QuadraticProgram& qp, c
 
 }  // namespace
 
-ErrorEstimate estimate_error(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
-                             const Eigen::VectorXd& lambda, const FrictionFields* friction) {
-  Stopwatch clock;
+namespace detail {
+
+EstimateSums estimate_sums(const Model& model, const Eigen::VectorXd& displacement, const std::vector<double>& pressure,
+                           const Eigen::VectorXd& slack, const FrictionBlock* friction_rows,
+                           const FrictionFields* friction, const SumOverShared& sum_shared) {
+  VolumeParts volume = volume_parts(model, displacement, true, sum_shared);
+  EstimateSums sums;
+  sums.energy = volume.energy;
+  sums.recovery = volume.squared.sum();
+  const ContactParts contact =
+      add_contact_terms(model, pressure, slack, friction_rows, displacement, friction, volume.squared);
+  sums.contact = contact.squared;
+  sums.friction = contact.friction_squared;
+  sums.total = volume.squared.sum();
+  sums.squared = std::move(volume.squared);
+  return sums;
+}
+
+ErrorEstimate estimate_from_sums(const EstimateSums& sums, const Eigen::VectorXd& indicator_squared,
+                                 bool force_estimate) {
   ErrorEstimate estimate;
-  const Eigen::VectorXd displacement = full_displacement(model, u);
-  VolumeParts volume = volume_parts(model, displacement, true);
-  estimate.strain_energy = volume.energy;
-  estimate.recovery = std::sqrt(volume.squared.sum());
-  const ContactParts contact = add_contact_terms(model, qp, u, displacement, lambda, friction, volume.squared);
-  estimate.contact = std::sqrt(contact.squared);
-  estimate.friction = std::sqrt(contact.friction_squared);
-  estimate.estimate = std::sqrt(volume.squared.sum());
+  estimate.strain_energy = sums.energy;
+  estimate.recovery = std::sqrt(sums.recovery);
+  estimate.contact = std::sqrt(sums.contact);
+  estimate.friction = std::sqrt(sums.friction);
+  estimate.estimate = std::sqrt(sums.total);
   const double norm = std::sqrt(2 * std::max(estimate.strain_energy, 0.0));
   estimate.relative = norm > 0 ? estimate.estimate / norm : 0.0;
   // The force conjugate to a prescribed push δ is P = dE/dδ; where E and E_h are both
@@ -465,12 +492,28 @@ ErrorEstimate estimate_error(const Model& model, const QuadraticProgram& qp, con
   // Force loads and friction (whose dissipation is no energy) break the argument, and so do
   // quadratic elements: their faces penetrate between nodes and their force error is not the
   // energy's (measured: a fifth of it on Hertz's cylinder, and of either sign; docs/estimate.md).
+  if (force_estimate) estimate.force_relative = estimate.relative * estimate.relative;
+  estimate.indicator = indicator_squared.cwiseSqrt();
+  estimate.max_indicator = estimate.indicator.size() ? estimate.indicator.maxCoeff() : 0.0;
+  return estimate;
+}
+
+}  // namespace detail
+
+ErrorEstimate estimate_error(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
+                             const Eigen::VectorXd& lambda, const FrictionFields* friction) {
+  Stopwatch clock;
+  const Eigen::VectorXd displacement = full_displacement(model, u);
+  const bool rows = qp.n_constraints() > 0 && lambda.size() == qp.n_constraints() &&
+                    static_cast<int>(model.candidates.size()) == qp.n_constraints();
+  const std::vector<double> pressure = rows ? nodal_pressures(model, qp, lambda) : std::vector<double>();
+  const Eigen::VectorXd slack = rows ? Eigen::VectorXd(qp.g - qp.B * u) : Eigen::VectorXd();
+  const detail::EstimateSums sums = detail::estimate_sums(model, displacement, pressure, slack,
+                                                          qp.friction.empty() ? nullptr : &qp.friction, friction);
   const bool pushed = model.prescribed.size() && model.prescribed.cwiseAbs().maxCoeff() > 0;
   const bool forced = model.nodal_force.size() && model.nodal_force.cwiseAbs().maxCoeff() > 0;
-  if (pushed && !forced && model.mesh.order == 1 && qp.friction.empty() && lambda.size() == qp.n_constraints() &&
-      qp.n_constraints() > 0)
-    estimate.force_relative = estimate.relative * estimate.relative;
-  estimate.indicator = volume.squared.cwiseSqrt();
+  const bool force_estimate = pushed && !forced && model.mesh.order == 1 && qp.friction.empty() && rows;
+  ErrorEstimate estimate = detail::estimate_from_sums(sums, sums.squared, force_estimate);
   estimate.seconds = clock.seconds();
   return estimate;
 }

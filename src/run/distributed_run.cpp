@@ -34,6 +34,13 @@ void refuse_steps_on_several_processes(Backend backend) {
                                 " backend on several processes (under mpirun) yet: run the scene on one process");
 }
 
+void refuse_held_by_contact_on_several_processes(Backend backend, const std::string& motion) {
+  throw InputError("backend", "= \"" + to_string(backend) + "\": a body held only by its contacts (it moves freely " +
+                                  motion +
+                                  " without them) is not solved on several processes by this backend yet: run on "
+                                  "one process, or with another backend");
+}
+
 RunReport run_scene_distributed(const Scene& scene, const RunOptions& options) {
   std::vector<DistributedRun> runs;
   const DistributedRun* run = taker(scene, options, runs);

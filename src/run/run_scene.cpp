@@ -56,11 +56,8 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   if (in_parts && !scene.steps.empty()) detail::refuse_steps_on_several_processes(scene.solver.backend);
   // The free modes' proximal steps need K whole (solvers/floating.cpp): not on a problem in parts yet.
   if (in_parts && model->free_modes.cols() > 0)
-    throw InputError("backend", "= \"" + to_string(scene.solver.backend) +
-                                    "\": a body held only by its contacts (it moves freely " +
-                                    describe_free_motion(*model, model->free_modes.col(0)) +
-                                    " without them) is not solved on several processes by this backend yet: run on "
-                                    "one process, or with another backend");
+    detail::refuse_held_by_contact_on_several_processes(scene.solver.backend,
+                                                        describe_free_motion(*model, model->free_modes.col(0)));
   // The whole QP, which load steps change step by step (loads, gaps, friction offset).
   const std::shared_ptr<QuadraticProgram> whole =
       in_parts ? nullptr : std::make_shared<QuadraticProgram>(assemble_qp(*model));

@@ -9,7 +9,9 @@ which are the same to the bit), the force, a (or b), p0, J; that each .pvtu open
 (python3-vtk9) with exactly the one-process .vtu's points, cells and arrays; one summary, no
 temporary files; bad input under mpirun (a mesh file rank 0 cannot read, a bad value) ends
 every rank with exit 2 and one line. A scene with load steps: each step's force, a or b and
-reactions too, and the multigrid hierarchy set up once for the whole path.
+reactions too, and the multigrid hierarchy set up once for the whole path. The strain energy,
+the error estimate and its parts (1e-6: the contact part weighs gaps of round-off size), and
+each cell's error indicator in the pieces against the one-process .vtu's.
 
 usage: check_distributed.py CONTACTQP MPIEXEC SCENE WORKDIR [RANKS...]"""
 import json
@@ -21,6 +23,8 @@ import numpy
 # The two readers alone: `import vtk` loads every VTK module, 0.5 s more per call.
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import vtkXMLPUnstructuredGridReader, vtkXMLUnstructuredGridReader
+
+from checks import MPI_ENV, Checks
 
 TOL = 1e-8
 
@@ -51,6 +55,49 @@ def run(command, env):
     return done.returncode, done.stdout, done.stderr
 
 
+def read_cells(path):
+    """The error indicator of every cell, by its centroid (rounded: the pieces' cells are the
+    one-process mesh's, their points the same to the bit)."""
+    reader = vtkXMLPUnstructuredGridReader() if path.endswith(".pvtu") else vtkXMLUnstructuredGridReader()
+    reader.SetFileName(path)
+    reader.Update()
+    grid = reader.GetOutput()
+    array = grid.GetCellData().GetArray("error_indicator")
+    if array is None:
+        return {}
+    points = vtk_to_numpy(grid.GetPoints().GetData())
+    values = vtk_to_numpy(array)
+    out = {}
+    for k in range(grid.GetNumberOfCells()):
+        ids = grid.GetCell(k).GetPointIds()
+        centroid = points[[ids.GetId(j) for j in range(ids.GetNumberOfIds())]].mean(axis=0)
+        out[tuple(numpy.round(centroid, 12))] = values[k]
+    return out
+
+
+def check_estimate(label, serial, result, serial_cells, cells, check):
+    """The strain energy and the error estimate as one process's (its parts; each element's
+    indicator in the .pvtu's cells)."""
+    check(abs(result["strain_energy"] - serial["strain_energy"]) <= TOL * abs(serial["strain_energy"]),
+          "%s: strain energy %.12e against %.12e" % (label, result["strain_energy"], serial["strain_energy"]))
+    if "error_estimate" not in serial:
+        return
+    estimate, reference = result.get("error_estimate", {}), serial["error_estimate"]
+    for key, value in reference.items():
+        if isinstance(value, float) and key != "seconds":
+            theirs = estimate.get(key)
+            check(theirs is not None and abs(theirs - value) <= 1e-6 * max(abs(value), 1e-300),
+                  "%s: error_estimate.%s %s against %.10g" % (label, key, theirs, value))
+    common = set(cells) & set(serial_cells)
+    check(len(common) == len(serial_cells) == len(cells), "%s: an error indicator on each of the %d cells"
+          % (label, len(serial_cells)))
+    if common:
+        a = numpy.array([cells[c] for c in common])
+        b = numpy.array([serial_cells[c] for c in common])
+        check(numpy.abs(a - b).max() <= 1e-6 * numpy.abs(b).max(), "%s: each cell's indicator agrees to %.2e of the largest"
+              % (label, numpy.abs(a - b).max() / numpy.abs(b).max()))
+
+
 def relative(a, b):
     return numpy.linalg.norm(a - b) / max(numpy.linalg.norm(b), 1e-300)
 
@@ -78,14 +125,9 @@ def main(cli, mpiexec, scene, workdir, *ranks):
     os.makedirs(workdir, exist_ok=True)
     for name in os.listdir(workdir):
         os.remove(os.path.join(workdir, name))
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-               OMPI_MCA_rmaps_base_oversubscribe="1")
-    failures = []
-
-    def check(condition, text):
-        print(("ok   " if condition else "FAIL ") + text)
-        if not condition:
-            failures.append(text)
+    env = MPI_ENV
+    check = Checks()
+    failures = check.failures
 
     def path(name):
         return os.path.join(workdir, name)
@@ -111,6 +153,7 @@ def main(cli, mpiexec, scene, workdir, *ranks):
     with open(path("serial.json")) as f:
         serial = json.load(f)
     points, arrays, cells = read(path("serial.vtu"))
+    serial_cells = read_cells(path("serial.vtu"))
     for label in runs:
         stem = label.replace(" ", "")
         with open(path(stem + ".json")) as f:
@@ -134,6 +177,7 @@ def main(cli, mpiexec, scene, workdir, *ranks):
         for s, r in zip(serial["reactions"], result["reactions"]):
             check(relative(numpy.array(r["force"]), numpy.array(s["force"])) <= TOL, "%s: reaction %s" % (label, s["load"]))
         check_steps(label, serial.get("steps", []), result.get("steps", []), check)
+        check_estimate(label, serial, result, serial_cells, read_cells(path(stem + ".pvtu")), check)
         their_points, theirs, their_cells = read(path(stem + ".pvtu"))
         check(their_points == points, "%s: the .pvtu has the one-process .vtu's points" % label)
         check(their_cells == cells, "%s: %d cells in the pieces, %d in the .vtu" % (label, their_cells, cells))

@@ -1,0 +1,121 @@
+#!/usr/bin/python3
+"""Every shipped scene under `mpirun -n N contactqp solve S --backend petsc --tol 1e-10` against
+one process of active_set on the same scene (docs/architecture.md, "Which path a scene takes"):
+a scene the run solves gives one process's answer — every contact's force, a or b and p0 (the
+one-body contact, each pair), each reaction (as a vector) and every load step's force to 1e-8
+relative; a
+scene it does not solve yet ends with exit 2 and one line, and is one of REFUSED below (so that
+a scene newly refused fails, and a scene newly solved says so). The large ones ("-large",
+"-xl") are left to benchmarks/petsc/.
+
+usage: check_every_scene_mpirun.py CONTACTQP MPIEXEC SCENES_DIR WORKDIR [RANKS [SKIP...]]   (default 2)
+SKIP: scenes another ctest entry already runs under mpirun against one process (CI time)."""
+import json
+import os
+import subprocess
+import sys
+
+import numpy
+
+from checks import MPI_ENV, Checks
+
+TOL = 1e-8
+# What the petsc backend does not solve on several processes yet, and the words of its line.
+REFUSED = {
+    "hertz-force.json": "does not model a rigid surface yet",
+    "hertz-sphere-force.json": "does not model a rigid surface yet",
+    "hertz-pressure.json": "held only by its contacts",
+    "hertz-sphere-pressure.json": "held only by its contacts",
+    "mindlin-on-plane.json": "does not solve coulomb problems",
+    "sliding-block.json": "does not solve coulomb problems",
+    "mindlin-cylinders.json": "steps are not solved by the petsc backend on several processes",
+    "mindlin-spheres.json": "steps are not solved by the petsc backend on several processes",
+    "mindlin-force.json": "steps are not solved by the petsc backend on several processes",
+    "two-cylinders-force.json": "held only by its contacts",
+    "two-cylinders-pressure.json": "held only by its contacts",
+    "ball-between-plates.json": "held only by its contacts",
+}
+
+
+def run(command, env):
+    done = subprocess.run(command, env=env, capture_output=True, text=True, timeout=900)
+    return done.returncode, done.stdout, done.stderr
+
+
+def close(a, b):
+    return abs(a - b) <= TOL * max(abs(b), 1e-300)
+
+
+def numbers(result):
+    """The figures a user reads, by name: the contact's and each pair's, reactions, each step's force."""
+    out = {}
+    for key in ("total_force", "half_width", "contact_radius", "max_pressure"):
+        if key in result["contact"]:
+            out["contact." + key] = result["contact"][key]
+    for k, pair in enumerate(result.get("pairs", [])):
+        for key in ("total_force", "half_width", "contact_radius", "max_pressure"):
+            if isinstance(pair.get(key), float):
+                out["pairs[%d].%s" % (k, key)] = pair[key]
+    for k, step in enumerate(result.get("steps", [])):
+        out["steps[%d].total_force" % k] = step["total_force"]
+    return out
+
+
+def reactions(result):
+    """Each reaction's force vector, by its load (compared as vectors: a component that is zero
+    but for round-off has no digits to agree on)."""
+    return {r["load"]: numpy.array(r["force"]) for r in result.get("reactions", [])}
+
+
+def main(cli, mpiexec, scenes, workdir, ranks="2", *skip):
+    os.makedirs(workdir, exist_ok=True)
+    env = MPI_ENV
+    check = Checks()
+    failures = check.failures
+
+    names = sorted(n for n in os.listdir(scenes)
+                   if n.endswith(".json") and "-large" not in n and "-xl" not in n and n not in skip)
+    solved = []
+    for name in names:
+        scene = os.path.join(scenes, name)
+        mine, theirs = os.path.join(workdir, name + ".mpirun.json"), os.path.join(workdir, name + ".one.json")
+        for stale in (mine, theirs):
+            if os.path.exists(stale):
+                os.remove(stale)
+        code, out, err = run([mpiexec, "-n", ranks, "--oversubscribe", cli, "solve", scene, "--backend", "petsc",
+                              "--tol", "1e-10", "--quiet", "--json", mine], env)
+        lines = [line for line in err.splitlines() if line.startswith("contactqp")]
+        if name in REFUSED:
+            check(code == 2 and len(lines) == 1 and REFUSED[name] in lines[0] and not os.path.exists(mine),
+                  "%s: not solved under mpirun yet, exit %d, %s" % (name, code, lines))
+            continue
+        check(code == 0, "%s: solved on %s ranks (exit %d) %s" % (name, ranks, code, err.strip()[-300:]))
+        if code != 0:
+            continue
+        code, out, err = run([cli, "solve", scene, "--backend", "active_set", "--tol", "1e-10", "--quiet",
+                              "--json", theirs], env)
+        check(code == 0, "%s: one process of active_set (exit %d)" % (name, code))
+        if code != 0:
+            continue
+        with open(mine) as f:
+            result = json.load(f)
+        with open(theirs) as f:
+            reference = json.load(f)
+        got, want = numbers(result), numbers(reference)
+        check(sorted(got) == sorted(want), "%s: the same figures (%d)" % (name, len(want)))
+        bad = [key for key in want if key in got and not close(got[key], want[key])]
+        mine_r, theirs_r = reactions(result), reactions(reference)
+        check(sorted(mine_r) == sorted(theirs_r) and all(
+            numpy.linalg.norm(mine_r[k] - v) <= TOL * max(numpy.linalg.norm(v), 1e-300) for k, v in theirs_r.items()),
+            "%s: the reactions of %s agree to %g" % (name, ", ".join(sorted(theirs_r)), TOL))
+        check(not bad, "%s: %d figures agree to %g%s" % (name, len(want), TOL,
+                                                          "".join("; %s %.10g against %.10g" % (k, got[k], want[k])
+                                                                  for k in bad)))
+        solved.append(name)
+    print("solved under mpirun -n %s: %d of %d scenes (%s); not yet: %d" % (
+        ranks, len(solved), len(names), ", ".join(solved), len(names) - len(solved)))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(*sys.argv[1:]))
