@@ -462,8 +462,8 @@ BoundPdasResult::~BoundPdasResult() {
 namespace {
 
 // The hierarchy on A and the loop's KSP around it, once per A (the set-up of solve_bound_pdas).
-PetscErrorCode set_up(const PetscBoundQp& qp, const BoundPdasOptions& options, FineState* fine, BoundPdasResult* result,
-                      bool* options_error) {
+PetscErrorCode set_up_hierarchy(const PetscBoundQp& qp, const BoundPdasOptions& options, FineState* fine,
+                                BoundPdasResult* result, bool* options_error) {
   PetscFunctionBeginUser;
   const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(qp.A));
   // The hierarchy on A, once; its finest smoother works on the step's W (the shell), its
@@ -534,7 +534,7 @@ PetscErrorCode solve_bound_pdas(const PetscBoundQp& qp, const BoundPdasOptions& 
   } else {
     fine = std::make_shared<FineState>();
     fine->tol = options.tol;
-    PetscCall(set_up(qp, options, fine.get(), result, options_error));
+    PetscCall(set_up_hierarchy(qp, options, fine.get(), result, options_error));
     result->preconditioner_setups = 1;
   }
   result->setup_seconds = clock.seconds();
