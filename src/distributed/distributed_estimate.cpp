@@ -5,8 +5,8 @@
 
 #include <algorithm>
 
-#include "contact/contact.hpp"
 #include "contactqp/timer.hpp"
+#include "distributed_post.hpp"
 #include "post/estimate_sums.hpp"
 
 namespace contactqp::detail {
@@ -32,18 +32,6 @@ std::vector<double> row_pressures(const DistributedModel& model, const std::vect
   for (std::size_t i = 0; i < rows.size(); ++i)
     pressure[i] = by_node[static_cast<std::size_t>(width) * rows[i].node + place[i]];
   return pressure;
-}
-
-// g − B u of every row this rank holds (its nodes' free DOFs are all in local_u).
-Eigen::VectorXd row_slacks(const Model& local, const Eigen::VectorXd& local_u) {
-  Eigen::VectorXd slack(local.candidates.size());
-  for (std::size_t i = 0; i < local.candidates.size(); ++i) {
-    const ContactRowEntries row = contact_row(local, local.candidates[i]);
-    double s = row.g;
-    for (const auto& [column, value] : row.coefficients) s -= value * local_u[column];
-    slack[static_cast<Eigen::Index>(i)] = s;
-  }
-  return slack;
 }
 
 bool any_rank(bool mine) {

@@ -228,12 +228,10 @@ PieceArrays piece_arrays(const DistributedModel& model, const Eigen::VectorXd& d
   fields.mask = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd gap = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
   std::vector<char> candidate(n, 0);
+  const Eigen::VectorXd slack = row_slacks(local, local_u);
   for (int i = 0; i < model.n_own_candidates; ++i) {
     const Candidate& c = local.candidates[i];
-    const ContactRowEntries row = contact_row(local, c);
-    double Bu = 0;
-    for (const auto& [column, value] : row.coefficients) Bu += value * local_u[column];
-    gap[c.node] = std::min(gap[c.node], row.g - Bu);
+    gap[c.node] = std::min(gap[c.node], slack[i]);
     fields.pressure[c.node] += own_pressure[i];
     const Eigen::Vector3d normal = project(local.scene.obstacles[c.obstacle], mesh.nodes[c.node]).normal;
     fields.force.segment(dim * c.node, dim) += own_lambda[i] * normal.head(dim);
@@ -252,6 +250,17 @@ PieceArrays piece_arrays(const DistributedModel& model, const Eigen::VectorXd& d
   fields.force = from_owner(model, fields.force, dim);
   fields.gap = from_owner(model, fields.gap, 1);
   return piece;
+}
+
+Eigen::VectorXd row_slacks(const Model& local, const Eigen::VectorXd& local_u) {
+  Eigen::VectorXd slack(local.candidates.size());
+  for (std::size_t i = 0; i < local.candidates.size(); ++i) {
+    const ContactRowEntries row = contact_row(local, local.candidates[i]);
+    double Bu = 0;
+    for (const auto& [column, value] : row.coefficients) Bu += value * local_u[column];
+    slack[static_cast<Eigen::Index>(i)] = row.g - Bu;
+  }
+  return slack;
 }
 
 void write_pvtu(const std::string& pvtu_path, const Mesh& mesh, const std::vector<PointArray>& arrays,

@@ -37,6 +37,10 @@ ContactSurface gather_contact_surface(const DistributedModel& model, const Eigen
 ContactSummary distributed_contact_summary(const DistributedModel& model, const ContactSurface& surface,
                                            const Eigen::VectorXd& displacement, std::vector<double>& own_pressure);
 
+// g − B u of every contact row this rank holds (local.candidates; all of its nodes' free DOFs
+// are in `local_u`, local_free_values()).
+Eigen::VectorXd row_slacks(const Model& local, const Eigen::VectorXd& local_u);
+
 // The reactions of the displacement loads, on every rank. Collective.
 std::vector<Reaction> distributed_reactions(const DistributedModel& model, const Eigen::VectorXd& local_u,
                                             const Eigen::VectorXd& own_lambda);
