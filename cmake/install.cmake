@@ -5,11 +5,19 @@
 # The libraries are static archives, so their private dependencies (CHOLMOD, LAPACK, Ipopt,
 # NLopt) are link dependencies of whoever links them: contactqpConfig.cmake finds them again the
 # way this build did, with the find module installed beside it. Gmsh is not one: the library
-# opens the Gmsh plugin, installed in lib/contactqp/, when a run meshes with it.
+# opens the Gmsh plugin, installed in lib/contactqp/, when a run meshes with it, nor is PETSc:
+# its plugin, beside Gmsh's, is opened by the first run that uses it.
 include(CMakePackageConfigHelpers)
 set(CONTACTQP_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/contactqp)
 
-install(TARGETS cqp_qp cqp_solvers cqp_fe cqp_run cqp_petsc contactqp_library
+# Where PETSc is built in, the room's plugin-free part and its calls to the PETSc plugin
+# (installed in lib/contactqp/ beside Gmsh's); without it, the room that says so.
+if(CONTACTQP_WITH_PETSC)
+  set(installed_petsc cqp_petsc_plugin_calls)
+else()
+  set(installed_petsc cqp_petsc_plugin_calls cqp_petsc)
+endif()
+install(TARGETS cqp_qp cqp_solvers cqp_fe cqp_run ${installed_petsc} contactqp_library
         EXPORT contactqpTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -29,9 +37,13 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/contactqpConfig.cmake ${CMAKE_CURRENT_
 # pkg-config: the archives in link order, then what they need (static libraries carry no
 # dependency list of their own).
 set(CONTACTQP_PC_REQUIRES "eigen3")
-# PETSc and MPI before Ipopt: its sequential MUMPS defines stub MPI functions (CMakeLists.txt, contactqp_library).
+# MPI (C and Fortran) and PETSc's MPI build of MUMPS before Ipopt: its sequential MUMPS defines
+# stub MPI functions and MUMPS's names, which the PETSc plugin's calls would otherwise bind to
+# (CMakeLists.txt, petsc_plugin_symbol_order).
+set(CONTACTQP_PC_PETSC "-lcqp_petsc")
 if(CONTACTQP_WITH_PETSC)
-  string(APPEND CONTACTQP_PC_REQUIRES " PETSc ompi-cxx")
+  string(APPEND CONTACTQP_PC_REQUIRES " ompi-cxx ompi-fort")
+  set(CONTACTQP_PC_PETSC "-lcqp_petsc_plugin_calls ${MUMPS_MPI_LIBRARY}")
 endif()
 if(CONTACTQP_HAVE_IPOPT)
   string(APPEND CONTACTQP_PC_REQUIRES " ipopt")

@@ -54,5 +54,8 @@ struct PhaseFaults {
   double (*grace_seconds)() = nullptr;
 };
 void install_phase_faults(const PhaseFaults& faults);
+// The faults installed (none: both pointers null). A library loaded later installs them in its
+// own copy of this code (the PETSc plugin does).
+PhaseFaults installed_phase_faults();
 
 }  // namespace contactqp

@@ -24,8 +24,7 @@
 #include "fe/stiffness_matrix.hpp"
 #include "model/model_parts.hpp"
 #include "mpi.hpp"
-#include "qp/builtins.hpp"
-#include "run/distributed_run.hpp"
+#include "run_distributed.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -98,29 +97,6 @@ SolveResult solve_result(const DistributedPdasResult& solved, const DistributedM
                                                             " <= " + short_number(tol) + " (" + how + ")"
                                                       : solved.message + " (" + how + ")";
   return result;
-}
-
-// Whether run_scene() goes this way: the petsc backend (with contact, or --no-contact: one
-// linear solve by the same KSP and hierarchy, the contact solve's reference) on a one-body
-// scene, under mpirun or with options.distributed (the CLI's default). On one process only
-// what this path models goes this way: a frictionless scene, with or without load steps; the
-// others keep the one-process path (docs/architecture.md, "Which path a scene takes"). Under
-// mpirun they come here and are refused below, since the one-process path would hold
-// everything on every rank.
-bool takes_distributed_run(const Scene& scene, const RunOptions& options) {
-  if (scene.solver.backend != Backend::Petsc || !scene.bodies.empty() || !scene.pairs.empty()) return false;
-  if (process_count() > 1) return true;
-  if (!options.distributed || scene.friction_law() != FrictionLaw::None) return false;
-  // A body loaded by forces alone may be one that only its contacts hold, which the one-process
-  // path solves on its free motions (docs/extremes.md) and the distributed model refuses.
-  const auto displaced = [](const LoadSpec& load) { return load.is<DisplacementLoad>(); };
-  if (std::none_of(scene.loads.begin(), scene.loads.end(), displaced)) return false;
-  const auto rigid = [](const LoadSpec& load) { return load.is<RigidForceLoad>(); };
-  if (std::any_of(scene.loads.begin(), scene.loads.end(), rigid)) return false;
-  // The one-process path's own methods (method=tao, hierarchy=fresh), which pdas_options() refuses.
-  for (const auto& [key, value] : options_for(Backend::Petsc, scene.solver.backend_options))
-    if ((key == "method" && value != "pdas") || (key == "hierarchy" && value != "kept")) return false;
-  return true;
 }
 
 // One solve of the QP as it stands, certified: the status claims no more than the certificate
@@ -225,7 +201,9 @@ CertifiedSolve solve_load_steps(const Scene& scene, DistributedModel& model, Dis
   return last;
 }
 
-// Collective. What run_scene() does, distributed.
+}  // namespace
+
+// Collective. What run_scene() does, distributed (run_distributed.hpp).
 RunReport run_distributed(const Scene& scene, const RunOptions& options) {
   Stopwatch total;
   validate_options(scene.solver);
@@ -343,13 +321,4 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
   return report;
 }
 
-}  // namespace
 }  // namespace contactqp::detail
-
-// run_scene() goes this way for the petsc backend under mpirun (run/distributed_run.hpp).
-CONTACTQP_BUILTIN(distributed_run) {
-  DistributedRun run;
-  run.takes = takes_distributed_run;
-  run.run = run_distributed;
-  register_distributed_run(run);
-}

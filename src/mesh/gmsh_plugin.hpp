@@ -39,11 +39,9 @@ struct GmshPlugin {
   std::string (*gmsh_error_text)() = nullptr;                          // gmsh_model.hpp: inside a catch block
 };
 
-// The plugin's table, the plugin opened on the first call (thread-safe). It is looked for in
-// $CONTACTQP_PLUGIN_DIR, then beside the program or module that holds this library (the build
-// tree's plugins/ folder, or the installed lib/contactqp/), then in the configured install
-// prefix's lib/contactqp/. Throws std::runtime_error "Gmsh is unavailable: ..." naming where it
-// looked and why each place failed; the next call tries again.
+// The plugin's table, the plugin opened on the first call (thread-safe; qp/plugins.hpp says where
+// it is looked for). Throws std::runtime_error "Gmsh is unavailable: ..." naming where it looked
+// and why each place failed; the next call tries again.
 const GmshPlugin& gmsh_plugin();
 
 // The file name, and the symbol the plugin exports (extern "C", returning its table).

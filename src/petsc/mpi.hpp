@@ -18,6 +18,8 @@ void sum_over_ranks(double* values, long n);
 void connect_mpi();
 // agree_on_failure() (processes.hpp), on a communicator of its own.
 AgreedFailure mpi_agree_on_failure(int status, const std::string& error, double timeout_seconds);
+// Starts PETSc (and MPI, when nobody did) with the user's PETSc options on its command line.
+void start_petsc_runtime(const std::map<std::string, std::string>& library_options);
 
 // PETSc's options database entries in SolveOptions::library_options ("petsc"), or "".
 std::string petsc_options_of(const std::map<std::string, std::string>& library_options);

@@ -12,7 +12,6 @@
 
 #include "contactqp/processes.hpp"
 #include "mpi.hpp"
-#include "qp/builtins.hpp"
 
 namespace contactqp::detail {
 
@@ -144,19 +143,9 @@ AgreedFailure mpi_agree_on_failure(int status, const std::string& error, double 
   return out;
 }
 
-}  // namespace contactqp::detail
-
-// Which process this is and how the processes end together, once PETSc has started MPI; and
-// how to start it, with the user's PETSc options on PETSc's command line.
-CONTACTQP_BUILTIN(mpi_processes) {
-  ProcessRuntime mpi;
-  mpi.rank = mpi_rank;
-  mpi.count = mpi_size;
-  mpi.start = [](const std::map<std::string, std::string>& library_options) {
-    std::lock_guard<std::mutex> lock(petsc_mutex());
-    PetscRuntime::instance(petsc_options_of(library_options));
-  };
-  mpi.connect = connect_mpi;
-  mpi.agree_on_failure = mpi_agree_on_failure;
-  register_process_runtime(mpi);
+void start_petsc_runtime(const std::map<std::string, std::string>& library_options) {
+  std::lock_guard<std::mutex> lock(petsc_mutex());
+  PetscRuntime::instance(petsc_options_of(library_options));
 }
+
+}  // namespace contactqp::detail

@@ -14,7 +14,6 @@
 #include "multigrid.hpp"
 #include "petsc_matrix.hpp"
 #include "petsc_runtime.hpp"
-#include "qp/builtins.hpp"
 
 #include <petscksp.h>
 
@@ -353,11 +352,3 @@ std::shared_ptr<const LinearSolver> make_petsc_solver(const Eigen::SparseMatrix<
 }
 
 }  // namespace contactqp::detail
-
-// --linear-solver petsc: make_linear_solver() finds this factory (linear_solver.hpp).
-CONTACTQP_BUILTIN(petsc_solver) {
-  register_linear_solver(LinearSolverKind::Petsc,
-                         [](const Eigen::SparseMatrix<double>& A, const LinearSolverOptions& options) {
-                           return make_petsc_solver(A, options);
-                         });
-}

@@ -16,6 +16,8 @@ PhaseFaults& installed_faults() {
 
 void install_phase_faults(const PhaseFaults& faults) { installed_faults() = faults; }
 
+PhaseFaults installed_phase_faults() { return installed_faults(); }
+
 double failed_process_grace_seconds() {
   const PhaseFaults& faults = installed_faults();
   return faults.grace_seconds ? faults.grace_seconds() : failure_grace_seconds;
