@@ -2,11 +2,11 @@
 # (find_package(contactqp) -> contactqp::contactqp), contactqp.pc, and the CLI. The Python
 # module installs itself (python/CMakeLists.txt).
 #
-# The libraries are static archives, so their private dependencies (CHOLMOD, LAPACK, Ipopt,
-# NLopt) are link dependencies of whoever links them: contactqpConfig.cmake finds them again the
+# The libraries are static archives, so their private dependencies (CHOLMOD, LAPACK, NLopt)
+# are link dependencies of whoever links them: contactqpConfig.cmake finds them again the
 # way this build did, with the find module installed beside it. Gmsh is not one: the library
 # opens the Gmsh plugin, installed in lib/contactqp/, when a run meshes with it, nor is PETSc:
-# its plugin, beside Gmsh's, is opened by the first run that uses it.
+# its plugin, beside Gmsh's, is opened by the first run that uses it, and Ipopt's likewise.
 include(CMakePackageConfigHelpers)
 set(CONTACTQP_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/contactqp)
 
@@ -37,16 +37,10 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/contactqpConfig.cmake ${CMAKE_CURRENT_
 # pkg-config: the archives in link order, then what they need (static libraries carry no
 # dependency list of their own).
 set(CONTACTQP_PC_REQUIRES "eigen3")
-# MPI (C and Fortran) and PETSc's MPI build of MUMPS before Ipopt: its sequential MUMPS defines
-# stub MPI functions and MUMPS's names, which the PETSc plugin's calls would otherwise bind to
-# (CMakeLists.txt, petsc_plugin_symbol_order).
+# Neither PETSc and MPI nor Ipopt: their plugins, in lib/contactqp/, link them.
 set(CONTACTQP_PC_PETSC "-lcqp_petsc")
 if(CONTACTQP_WITH_PETSC)
-  string(APPEND CONTACTQP_PC_REQUIRES " ompi-cxx ompi-fort")
-  set(CONTACTQP_PC_PETSC "-lcqp_petsc_plugin_calls ${MUMPS_MPI_LIBRARY}")
-endif()
-if(CONTACTQP_HAVE_IPOPT)
-  string(APPEND CONTACTQP_PC_REQUIRES " ipopt")
+  set(CONTACTQP_PC_PETSC "-lcqp_petsc_plugin_calls")
 endif()
 if(CONTACTQP_HAVE_NLOPT)
   string(APPEND CONTACTQP_PC_REQUIRES " nlopt")

@@ -1,7 +1,6 @@
 // The contactqp Python module (docs/python.md): pybind11 over the C++ library, for Debian's
 // /usr/bin/python3. scipy.sparse and numpy in, numpy out; bad input raises InputError.
 #include "bindings.hpp"
-#include "contactqp/processes.hpp"
 
 #ifndef CONTACTQP_VERSION
 #error "CONTACTQP_VERSION is set by python/CMakeLists.txt from the project version"
@@ -24,10 +23,8 @@ Two ways in:
 
 Bad input raises contactqp.InputError (a ValueError) naming the field.)";
   m.attr("__version__") = CONTACTQP_VERSION;
-  // Another module of the same process may call MUMPS (GetFEM does, Ipopt's backend does): with
-  // PETSc built in, those calls bind to PETSc's MPI build of MUMPS, which aborts the process
-  // unless MPI is running. Start it now, once (processes.hpp); a no-op without PETSc.
-  contactqp::start_process_runtime();
+  // Nothing of PETSc, MPI or Ipopt is loaded at import: their plugins are opened RTLD_LOCAL when
+  // a call first needs them, so another module's MUMPS (GetFEM's) never meets PETSc's MPI build.
   contactqp::python::bind_errors(m);
   contactqp::python::bind_qp(m);
   contactqp::python::bind_pairs(m);

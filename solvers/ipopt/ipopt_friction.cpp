@@ -1,5 +1,4 @@
 // The ipopt backend's dual NLP of Tresca's problem (ipopt_friction.hpp); built with Ipopt only.
-#ifdef CONTACTQP_HAVE_IPOPT  // set by CMake when Ipopt was found (CONTACTQP_WITH_IPOPT)
 #include <IpIpoptApplication.hpp>
 
 #include <algorithm>
@@ -180,4 +179,3 @@ Ipopt::SmartPtr<ContactNlp> make_friction_dual_nlp(const QuadraticProgram& qp, c
 }
 
 }  // namespace contactqp::detail
-#endif  // CONTACTQP_HAVE_IPOPT
