@@ -19,8 +19,9 @@ int process_count();
 
 // Starts the runtime of several processes now, once per process, if one is built in; a no-op
 // otherwise. `library_options` (SolveOptions::library_options) are its libraries' options, the
-// command line it starts with. A library whose calls need it running calls it first: where
-// PETSc is built in, Ipopt's MUMPS resolves to PETSc's MPI build, which aborts without MPI.
+// command line it starts with. A library whose calls need it running calls it first: in a
+// program that links PETSc itself, Ipopt's MUMPS resolves to PETSc's MPI build, which aborts
+// without MPI (solvers/ipopt.cpp).
 void start_process_runtime(const std::map<std::string, std::string>& library_options = {});
 
 // Connects the processes launched together (MPI alone, no library on it yet), once per process,
