@@ -50,6 +50,9 @@ endif()
 get_property(anchors GLOBAL PROPERTY CONTACTQP_BUILTIN_ANCHORS)
 set(CONTACTQP_PC_KEEP "")
 foreach(anchor IN LISTS anchors)
+  if(CONTACTQP_WITH_PETSC AND anchor STREQUAL "contactqp_builtins_cqp_petsc")
+    continue()  # the room linked whole is not installed: the PETSc plugin holds it
+  endif()
   string(APPEND CONTACTQP_PC_KEEP " -Wl,--undefined=${anchor}")
 endforeach()
 # Relocatable: the prefix is found from the .pc file's own place, so `--prefix P` at install

@@ -1,4 +1,4 @@
-// Linked into the executables of the sanitizer build when PETSc is built in (CMakeLists.txt):
+// Linked into the sanitizer build's tests and PETSc plugin when PETSc is built in (CMakeLists.txt):
 // PETSc's PetscOptionsBegin_Private(), with what it allocates left out of LeakSanitizer's check.
 // Every PETSc XSetFromOptions() reads its options in a block that begins by copying the block's
 // title and prefix (PetscOptionsBegin_Private) and ends by freeing them (PetscOptionsEnd).
@@ -9,7 +9,8 @@
 // tools/lsan.supp can name them. The copies are all this call allocates (besides PETSc's
 // process-wide list of help already printed); a Vec, Mat, KSP or communicator that our code
 // forgets to free is still reported. PETSc calls this function through its PLT, so the
-// executable's definition is the one it reaches (-Wl,--export-dynamic-symbol).
+// definition it reaches is the test executable's (-Wl,--export-dynamic-symbol), or the PETSc
+// plugin's, which comes before PETSc in the plugin's own scope; RTLD_NEXT is PETSc's, after it.
 #include <dlfcn.h>
 #include <petscsys.h>
 #include <sanitizer/lsan_interface.h>
