@@ -51,6 +51,27 @@ run_ctest() {
   passed=$((passed + count))
 }
 
+# run_ctest for the sanitizer stage. LeakSanitizer stops every thread of a test at its exit to
+# scan for leaks, and its tracer has crashed there once (SIGSEGV in the tracer, "LeakSanitizer
+# has encountered a fatal error", after the test's own checks had all passed): a fault of the
+# sanitizer's runtime, not a finding, which 8 reruns of that test did not repeat. Only when the
+# log shows that crash are the tests that failed run once more (ctest --rerun-failed); any
+# failure of that run, and any run without that crash, fails the stage as before.
+run_ctest_sanitized() {
+  dir=$1
+  shift
+  ctest --test-dir "$dir" --output-on-failure -j$jobs "$@" 2>&1 | tee "$log"
+  count=$(sed -n 's/^100% tests passed, 0 tests failed out of \([0-9]*\)$/\1/p' "$log")
+  if [ -z "$count" ] && grep -q "LeakSanitizer has encountered a fatal error" "$log"; then
+    total=$(sed -n 's/^[0-9]*% tests passed, [0-9]* tests failed out of \([0-9]*\)$/\1/p' "$log")
+    echo "run-tests: LeakSanitizer's tracer crashed at a test's exit: the failed tests once more"
+    ctest --test-dir "$dir" --output-on-failure --rerun-failed 2>&1 | tee "$log"
+    if grep -q "^100% tests passed, 0 tests failed out of" "$log"; then count=$total; fi
+  fi
+  [ -n "$count" ] || { echo "run-tests: ctest in $dir did not pass" >&2; exit 1; }
+  passed=$((passed + count))
+}
+
 # Whether this CPU runs OpenBLAS's kernel $1 (the instructions it needs, from /proc/cpuinfo).
 cpu_runs() {
   case "$1" in
@@ -122,7 +143,7 @@ cmake --build build-asan -j$jobs
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1 \
 LSAN_OPTIONS=suppressions=$(pwd)/tools/lsan.supp:print_suppressions=0 \
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  run_ctest build-asan -LE 'large|sources'
+  run_ctest_sanitized build-asan -LE 'large|sources'
 stage_done 2
 
 echo "== 3/3 libFuzzer on the scene parser and on mesh files, 30 s each, side by side"
