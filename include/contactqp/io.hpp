@@ -11,6 +11,7 @@
 #include "contactqp/certificate.hpp"
 #include "contactqp/estimate.hpp"
 #include "contactqp/post.hpp"
+#include "contactqp/scene.hpp"
 
 namespace contactqp {
 
@@ -44,6 +45,28 @@ struct StepReport {
   std::vector<Reaction> reactions;
 };
 
+// One cycle of an adaptive run (docs/adaptive.md): the mesh it solved on and what it gave.
+struct AdaptiveCycle {
+  long long elements = 0, dofs = 0;
+  double estimate = 0;  // η
+  double relative = 0;  // η / sqrt(2E)
+  double strain_energy = 0;
+  // Against the obstacles (ContactSummary); in a scene whose bodies touch only each other, the
+  // first pair's (PairContact: the force's norm, the node side's pressure).
+  double total_force = 0, max_pressure = 0;
+  double zone = 0;     // the contact zone's half-width b (2D) or radius a (3D)
+  int iterations = 0;  // the solve's (started from the last cycle's answer after the first)
+  double seconds = 0;  // the cycle's whole run: mesh to estimate
+};
+
+// An adaptive run's cycles, in order; the report around it is the last cycle's.
+struct AdaptiveRun {
+  AdaptSpec spec;
+  bool met = false;  // the last cycle's η / sqrt(2E) is at most spec.target
+  std::string stop;  // why it stopped short of the target; "" when met
+  std::vector<AdaptiveCycle> cycles;
+};
+
 // Everything one solve produced, for the result file and the summary. run_scene() (run.hpp)
 // makes one. The report owns what it holds, the model and the QP included (shared, read-only),
 // so that it outlives the scene it came from, e.g. as a Python object.
@@ -70,6 +93,9 @@ struct RunReport {
   // is false (--no-estimate); a distributed run neither.
   std::optional<double> strain_energy;
   std::optional<ErrorEstimate> error_estimate;
+  // An adaptive run (scene "adapt"): every cycle; the rest of the report is the last cycle's,
+  // its timings the last cycle's phases, "adapt" (the earlier cycles) and "total" (all of them).
+  std::optional<AdaptiveRun> adaptive;
   // A run whose processes each hold part of the mesh (mpirun, src/distributed/) writes its
   // ParaView file in pieces: every process calls this with the .pvtu path (collective), which
   // writes its piece beside it and, on the first process, the .pvtu. Empty otherwise.

@@ -38,6 +38,10 @@ struct RunOptions {
   // Called as each phase starts: "mesh" (with the model), "assemble", "solve", "certify",
   // "postprocess". For a progress display; empty: not called.
   std::function<void(const char* phase)> on_phase;
+  // Called once the QP is assembled, before a solve without load steps: the backend's start
+  // (SolveOptions::initial) for the model just built. Empty: each backend's own. An adaptive run
+  // (docs/adaptive.md) carries each cycle's answer to the next mesh with it.
+  std::function<InitialGuess(const Model& model, const QuadraticProgram& qp)> initial_guess;
 };
 
 // Validates the solver options (InputError naming the field, before any work), builds the

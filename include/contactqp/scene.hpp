@@ -21,6 +21,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <optional>
 #include <string>
 #include <variant>
@@ -56,6 +57,11 @@ struct MeshSpec {
   double size_factor = 1;  // .geo files only: multiplies Gmsh's Mesh.MeshSizeFactor (all sizes), > 0
   int refinements =
       0;  // half_disc, hemisphere: Gmsh meshes 2^n times larger sizes, each element then split in 4 (8), n times
+  // Generated shapes: when set, the element size wanted at each point x of the body, in its own
+  // frame (as "body" describes it: before a transform, "mirror" and "offset") and in lengths,
+  // in place of size, contact_size and grading; refinements are then not applied (Gmsh meshes at
+  // these sizes). Not a scene key: an adaptive run (AdaptSpec) sets it from its last cycle.
+  std::function<double(const Eigen::Vector3d& x)> size_field;
 };
 
 struct BodySpec {
@@ -259,6 +265,16 @@ struct LoadStep {
   std::vector<std::pair<std::string, double>> factors;  // (load name, factor) as written
 };
 
+// "adapt": {"target": 0.01}: solve, estimate the error, remesh the generated bodies with sizes
+// from the error indicators, and solve again, until the estimated relative energy error
+// η / sqrt(2E) is at most `target` (docs/adaptive.md). A run that stops short of it (the DOF
+// budget or the cycles spent) ends with the last cycle's answer and says what it reached.
+struct AdaptSpec {
+  double target = 0;             // η / sqrt(2E) wanted, in (0, 1)
+  long long max_dofs = 1000000;  // no cycle is run on a mesh expected to have more DOFs, > 0
+  int max_cycles = 12;           // solves in all, the first on the scene's own mesh included, ≥ 1
+};
+
 struct Scene {
   std::string source;  // file the scene was read from ("" for a string)
   PlaneModel model = PlaneModel::PlaneStrain;
@@ -281,6 +297,8 @@ struct Scene {
   // The energy-error estimate after the solve (docs/estimate.md): the scene's "estimate", the
   // command line's --no-estimate.
   bool estimate = true;
+  // An adaptive run (docs/adaptive.md): the scene's "adapt", the command line's --adapt.
+  std::optional<AdaptSpec> adapt;
 
   int dim() const { return dimension(model); }
   // The scene's friction law: None when no boundary, obstacle or pair has friction.

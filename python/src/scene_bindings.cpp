@@ -272,6 +272,36 @@ warnings; json(), csv(), vtu() give the output files' text.)")
       .def_property_readonly(
           "bodies", [](const Report& r) { return bodies_list(r); },
           "one contactqp.BodyResult per body of a scene with bodies (empty otherwise)")
+      .def_property_readonly(
+          "adaptive",
+          [](const RunReport& r) -> py::object {
+            if (!r.adaptive) return py::none();
+            py::list cycles;
+            for (const AdaptiveCycle& c : r.adaptive->cycles) {
+              py::dict cycle;
+              cycle["elements"] = c.elements;
+              cycle["dofs"] = c.dofs;
+              cycle["energy_norm"] = c.estimate;
+              cycle["relative"] = c.relative;
+              cycle["strain_energy"] = c.strain_energy;
+              cycle["total_force"] = c.total_force;
+              cycle["max_pressure"] = c.max_pressure;
+              cycle["zone"] = c.zone;
+              cycle["iterations"] = c.iterations;
+              cycle["seconds"] = c.seconds;
+              cycles.append(cycle);
+            }
+            py::dict out;
+            out["target"] = r.adaptive->spec.target;
+            out["met"] = r.adaptive->met;
+            out["stop"] = r.adaptive->stop;
+            out["cycles"] = cycles;
+            return out;
+          },
+          "a scene with \"adapt\" (docs/adaptive.md): {'target', 'met', 'stop', 'cycles': [{'elements', 'dofs', "
+          "'energy_norm', 'relative', 'strain_energy', 'total_force', 'max_pressure', 'zone', 'iterations', "
+          "'seconds'}]}; "
+          "the rest of the result is the last cycle's. None otherwise")
       .def_property_readonly("dofs", [](const RunReport& r) { return r.qp->n_dofs(); })
       .def_property_readonly("constraints", [](const RunReport& r) { return r.qp->n_constraints(); })
       .def_property_readonly("nodes", [](const RunReport& r) { return r.model->mesh.n_nodes(); })

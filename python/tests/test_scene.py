@@ -80,6 +80,26 @@ def test_a_ball_between_two_plates_reports_how_far_it_moved_as_a_whole():
         assert abs(pair.force_on_node_body[1]) == pytest.approx(0.005, rel=1e-8)
 
 
+def test_an_adaptive_scene_reports_its_cycles_as_the_json_does(tmp_path):
+    # hertz.json from one element size and an "adapt" section: the cycles refine until the
+    # estimated relative energy error is below the target; the result is the last cycle's.
+    scene = json.loads(open(HERTZ).read())
+    scene["body"]["mesh"] = {"size": 0.25, "contact_size": 0.25}
+    scene["solver"] = {"backend": "active_set"}
+    scene["adapt"] = {"target": 0.05}
+    path = tmp_path / "adaptive.json"
+    path.write_text(json.dumps(scene))
+    r = contactqp.solve_scene(str(path))
+    assert r.adaptive["met"]
+    assert r.adaptive["stop"] == ""
+    cycles = r.adaptive["cycles"]
+    assert len(cycles) >= 3
+    assert cycles[-1]["dofs"] == r.dofs
+    assert cycles[-1]["relative"] <= 0.05 < cycles[0]["relative"]
+    assert json.loads(r.json())["adaptive"]["cycles"][-1]["dofs"] == r.dofs
+    assert contactqp.solve_scene(HERTZ).adaptive is None
+
+
 def test_csv_and_vtu_equal_the_cli_files(tmp_path):
     csv, vtu = tmp_path / "p.csv", tmp_path / "m.vtu"
     run = subprocess.run([CLI, "solve", HERTZ, "--backend", "active_set", "--csv", str(csv), "--vtu", str(vtu)],

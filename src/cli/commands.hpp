@@ -32,6 +32,10 @@ struct SolveArguments {
   bool phase_memory = false;  // solve: the peak memory of each phase on stderr
   bool no_contact = false;    // drop the contact rows: one linear solve of the same K
   bool no_estimate = false;   // skip the energy-error estimate (the scene's "estimate": false)
+  double adapt = 0;           // the adaptive run's target (the scene's adapt.target), when given
+  bool adapt_given = false;
+  long long max_dofs = 0;  // the adaptive run's DOF budget (adapt.max_dofs), when given
+  bool max_dofs_given = false;
   bool distributed = false;   // solve: the distributed path on one process too (petsc)
   std::string ordering;       // empty: SolveOptions' default (amd)
   std::string linear_solver;  // empty: the scene's solver.linear_solver (default cholmod)

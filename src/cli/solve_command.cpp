@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "contactqp/errors.hpp"
+#include "contactqp/number_format.hpp"
 #include "contactqp/phases.hpp"
 #include "contactqp/processes.hpp"
 #include "contactqp/run.hpp"
@@ -62,6 +63,24 @@ void check_distinct_outputs(const std::string& scene_path,
 
 namespace {
 
+// --adapt and --max-dofs, over the scene's "adapt" (docs/adaptive.md).
+void apply_adapt_overrides(const SolveArguments& arguments, Scene& scene) {
+  if (arguments.adapt_given) {
+    require(arguments.adapt > 0 && arguments.adapt < 1, "--adapt", arguments.adapt,
+            "must lie in (0, 1): the relative energy error eta/sqrt(2E) wanted, 0.01 for 1%");
+    if (!scene.adapt) scene.adapt = AdaptSpec{};
+    scene.adapt->target = arguments.adapt;
+  }
+  if (arguments.max_dofs_given) {
+    require(arguments.max_dofs > 0, "--max-dofs", arguments.max_dofs, "must be positive");
+    if (!scene.adapt)
+      throw InputError("--max-dofs",
+                       "= " + std::to_string(arguments.max_dofs) +
+                           ": is the budget of an adaptive run; give --adapt TARGET or the scene's adapt");
+    scene.adapt->max_dofs = arguments.max_dofs;
+  }
+}
+
 int run_solve(const SolveArguments& arguments) {
   // Every check of the input first: a run never computes what it cannot save.
   if (!arguments.json_path.empty()) check_output_path(arguments.json_path, "--json");
@@ -75,6 +94,7 @@ int run_solve(const SolveArguments& arguments) {
   Scene scene = load_scene(arguments.scene_path);
   apply_overrides(arguments, scene.solver);
   if (arguments.no_estimate) scene.estimate = false;
+  apply_adapt_overrides(arguments, scene);
 
   RunOptions options;
   options.build.max_elements = arguments.max_elements;
@@ -159,6 +179,12 @@ int run_solve(const SolveArguments& arguments) {
   std::cerr << memory_line;  // after the progress line is erased
   for (const std::string& warning : report.warnings) std::cerr << "contactqp: warning: " << warning << "\n";
   std::cout << summary_table(report);
+  // An adaptive run that stopped short of its target says so, and fails like an unconverged solve.
+  if (report.adaptive && !report.adaptive->met) {
+    std::cerr << "contactqp: adapt: target " << number(100 * report.adaptive->spec.target, 3)
+              << "% not met: " << report.adaptive->stop << "\n";
+    return 1;
+  }
   return report.result.status == Status::Converged ? 0 : 1;
 }
 
@@ -225,11 +251,19 @@ void add_solve_command(CLI::App& app, int& exit_status) {
                     "part of the mesh, model and output) on one process too wherever that path models the scene");
   command->add_flag("--no-estimate", arguments->no_estimate,
                     "Skip the energy-error estimate after the solve (over the scene's \"estimate\"; docs/estimate.md)");
+  CLI::Option* adapt = command->add_option(
+      "--adapt", arguments->adapt,
+      "Adaptive run: remesh where the error estimate is large until eta/sqrt(2E) <= this, e.g. 0.01 "
+      "(over the scene's adapt.target; docs/adaptive.md)");
+  CLI::Option* max_dofs = command->add_option(
+      "--max-dofs", arguments->max_dofs, "Adaptive run: no mesh with more DOFs (over adapt.max_dofs, default 1000000)");
   command->add_flag("--no-contact", arguments->no_contact,
                     "Drop the contact rows: one linear solve of the same K (the reference for timings)");
   command->footer(backends_help());
-  command->callback([arguments, tol, max_iterations, &exit_status] {
+  command->callback([arguments, tol, max_iterations, adapt, max_dofs, &exit_status] {
     arguments->tol_given = tol->count() > 0;
+    arguments->adapt_given = adapt->count() > 0;
+    arguments->max_dofs_given = max_dofs->count() > 0;
     arguments->max_iterations_given = max_iterations->count() > 0;
     exit_status = run_solve(*arguments);
   });

@@ -125,6 +125,22 @@ std::string summary_table(const RunReport& report) {
         e->force_relative ? format("; contact force error ~%.2g%%", 100 * *e->force_relative).c_str() : "");
   else if (report.strain_energy)
     out += format("  energy       strain energy E = %.10g (no error estimate)\n", *report.strain_energy);
+  if (const auto& run = report.adaptive) {
+    out += format("  adapt        target eta/sqrt(2E) <= %.3g%%: %s\n", 100 * run->spec.target,
+                  run->met
+                      ? format("met after %zu cycle%s", run->cycles.size(), run->cycles.size() == 1 ? "" : "s").c_str()
+                      : ("not met: " + run->stop).c_str());
+    out += format(
+        "               cycle  elements      DOFs       eta  eta/sqrt(2E)  total force  max pressure  "
+        "%s  iterations  time [s]\n",
+        solid ? "radius a" : "  half b");
+    for (std::size_t k = 0; k < run->cycles.size(); ++k) {
+      const AdaptiveCycle& c = run->cycles[k];
+      out +=
+          format("               %5zu %9lld %9lld %9.3g %12.3g%% %12.6g %13.6g %9.6g %11d %9.3g\n", k + 1, c.elements,
+                 c.dofs, c.estimate, 100 * c.relative, c.total_force, c.max_pressure, c.zone, c.iterations, c.seconds);
+    }
+  }
   const ContactSummary& contact = report.contact;
   for (const ModelBody& body : model.bodies)
     out += format("  body         %s: %s, E = %g, nu = %g, %d nodes\n", body.name.c_str(),

@@ -218,6 +218,29 @@ json error_estimate_json(const ErrorEstimate& e) {
   return out;
 }
 
+// An adaptive run (docs/adaptive.md): its target, whether it was met, and every cycle.
+json adaptive_json(const AdaptiveRun& run) {
+  json cycles = json::array();
+  for (const AdaptiveCycle& c : run.cycles)
+    cycles.push_back({{"elements", c.elements},
+                      {"dofs", c.dofs},
+                      {"energy_norm", number(c.estimate)},
+                      {"relative", number(c.relative)},
+                      {"strain_energy", number(c.strain_energy)},
+                      {"total_force", number(c.total_force)},
+                      {"max_pressure", number(c.max_pressure)},
+                      {"zone", number(c.zone)},
+                      {"iterations", c.iterations},
+                      {"seconds", number(c.seconds)}});
+  json out = {{"target", number(run.spec.target)},
+              {"max_dofs", run.spec.max_dofs},
+              {"max_cycles", run.spec.max_cycles},
+              {"met", run.met},
+              {"cycles", cycles}};
+  if (!run.met) out["stop"] = run.stop;
+  return out;
+}
+
 }  // namespace
 
 std::string result_json(const RunReport& report) {
@@ -380,6 +403,7 @@ std::string result_json(const RunReport& report) {
   out["timings"] = timings_json(report.timings);
   if (report.strain_energy) out["strain_energy"] = number(*report.strain_energy);
   if (const auto& e = report.error_estimate) out["error_estimate"] = error_estimate_json(*e);
+  if (report.adaptive) out["adaptive"] = adaptive_json(*report.adaptive);
   out["scene"] = scene_json(model);
   out["warnings"] = report.warnings;
   return out.dump(2) + "\n";

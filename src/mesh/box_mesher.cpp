@@ -124,7 +124,10 @@ Mesh mesh_box(const BoxMeshRequest& request) {
                 "Max(0, Sqrt((x - (%.17g))*(x - (%.17g)) + (y - (%.17g))*(y - (%.17g))) - (%.17g))", c.x(), c.x(),
                 c.y(), c.y(), unit_radius(request));
   const std::string distance = "Sqrt(" + std::string(outside) + "*" + outside + " + z*z)";
-  set_graded_size_expression(unit_sizes(request), distance, request.volume_algorithm);
+  if (request.size_field)
+    set_size_field(request.size_field, request.height, request.volume_algorithm);
+  else
+    set_graded_size_expression(unit_sizes(request), distance, request.volume_algorithm);
   gmsh::option::setNumber("Mesh.ElementOrder", request.order);
   gmsh::model::mesh::generate(3);
   throw_if_gmsh_failed();

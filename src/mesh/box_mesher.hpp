@@ -32,6 +32,9 @@ struct BoxMeshRequest {
   // the contact zone ends); its part outside the bottom face is dropped. Length.
   double rim_radius = 0;
   VolumeAlgorithm volume_algorithm = VolumeAlgorithm::Delaunay;  // see graded_size.hpp
+  // When set, the element size wanted at each point (graded_size.hpp), in place of size,
+  // contact_size and grading; refinements must then be 0.
+  SizeField size_field;
 };
 
 // A dim-3 Mesh with boundaries "bottom" (z = 0, inside and outside the rim alike), "top" (z = height), "left" (x = −width/2),

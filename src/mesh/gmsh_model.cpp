@@ -104,7 +104,10 @@ void throw_if_gmsh_failed() {
   if (!error.empty()) throw std::runtime_error(error);
 }
 
-GmshSession::~GmshSession() { gmsh::finalize(); }
+GmshSession::~GmshSession() {
+  gmsh::model::mesh::removeSizeCallback();  // set_size_field()'s, which holds the caller's field
+  gmsh::finalize();
+}
 
 std::string gmsh_error_text() {
   try {

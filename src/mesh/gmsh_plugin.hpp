@@ -20,7 +20,7 @@ namespace contactqp::detail {
 // What the plugin offers: the functions of the headers above that call Gmsh, and those of
 // their files that do not but live beside them. `abi` must equal kGmshPluginAbi: a plugin
 // from another build of contactqp is refused rather than called with other struct layouts.
-inline constexpr int kGmshPluginAbi = 1;
+inline constexpr int kGmshPluginAbi = 2;
 struct GmshPlugin {
   int abi = 0;
   CoarseMesh (*coarse_half_disc)(const HalfDiscMeshRequest&) = nullptr;

@@ -124,6 +124,18 @@ void set_graded_size_expression(const GradedSize& sizes, const std::string& dist
   gmsh::option::setNumber("Mesh.Algorithm3D", algorithm == VolumeAlgorithm::Hxt ? 10 : 1);
 }
 
+void set_size_field(const SizeField& field, double unit, VolumeAlgorithm algorithm) {
+  // Gmsh 4.8 takes the smaller of the callback's size and the other sources': with no
+  // background field and no size from points or curvature, the callback's.
+  gmsh::model::mesh::setSizeCallback(
+      [field, unit](int, int, double x, double y, double z) { return field(Eigen::Vector3d(x, y, z) * unit) / unit; });
+  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+  gmsh::option::setNumber("Mesh.Algorithm", 6);
+  gmsh::option::setNumber("Mesh.Algorithm3D", algorithm == VolumeAlgorithm::Hxt ? 10 : 1);
+}
+
 double estimate_graded_tetrahedra(const GradedSize& sizes, double volume, double fine_volume,
                                   const std::function<double(double)>& shell_area) {
   // As in 2D, the size s(d) = cs + γ d is integrated exactly in its own variable: with

@@ -4,6 +4,7 @@
 // it takes the memory).
 #pragma once
 
+#include <Eigen/Core>
 #include <functional>
 #include <string>
 #include <vector>
@@ -58,6 +59,16 @@ enum class VolumeAlgorithm {
 // by Frontal-Delaunay, volumes by `algorithm`. Call between occ::synchronize() and
 // mesh::generate(3).
 void set_graded_size_expression(const GradedSize& sizes, const std::string& distance, VolumeAlgorithm algorithm);
+
+// A wanted element size at each point, in the body's own frame and lengths (MeshSpec::size_field).
+using SizeField = std::function<double(const Eigen::Vector3d& x)>;
+
+// Sets Gmsh's mesh size to `field` instead of a graded field (call where set_graded_size_field
+// or set_graded_size_expression would be): Gmsh, meshing in units of `unit`, asks for the size
+// at each point through its size callback (GmshSession removes it). The meshers' options are
+// those of the graded fields (sizes from the field only, Frontal-Delaunay surfaces, volumes by
+// `algorithm`).
+void set_size_field(const SizeField& field, double unit, VolumeAlgorithm algorithm = VolumeAlgorithm::Delaunay);
 
 // Tetrahedra of a body of volume `volume` meshed with the graded size of the distance d from
 // its fine zone, within a factor of about 2: the zone (d = 0) holds `fine_volume`, and

@@ -85,8 +85,11 @@ CoarseMesh coarse_half_disc(const HalfDiscMeshRequest& request) {
   sizes.size *= coarsening;
   sizes.contact_size *= coarsening;
   sizes.grading *= coarsening;
-  set_graded_size_field(sizes, fine_arcs, total_length(request.fine),
-                        points[std::min<size_t>(closest, points.size() - 1)]);
+  if (request.size_field)
+    set_size_field(request.size_field, request.radius);
+  else
+    set_graded_size_field(sizes, fine_arcs, total_length(request.fine),
+                          points[std::min<size_t>(closest, points.size() - 1)]);
   gmsh::option::setNumber("Mesh.ElementOrder", request.refinements > 0 ? 1 : request.order);
   gmsh::model::mesh::generate(2);
   throw_if_gmsh_failed();

@@ -23,6 +23,9 @@ struct HalfDiscMeshRequest {
   // new arc nodes put back on the circle: Gmsh's time grows faster than its triangles.
   int refinements = 0;
   Intervals fine;  // the fine arcs, as angles φ; a single point when nothing can touch
+  // When set, the element size wanted at each point (graded_size.hpp), in place of size,
+  // contact_size and grading; refinements must then be 0.
+  SizeField size_field;
 };
 
 // Boundaries of the result: "arc", "top", and "symmetry" (x = 0) when symmetric.

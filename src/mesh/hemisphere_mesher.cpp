@@ -114,7 +114,10 @@ CoarseMesh coarse_hemisphere(const HemisphereMeshRequest& request) {
   sizes.size *= coarsening;
   sizes.contact_size *= coarsening;
   sizes.grading *= coarsening;
-  set_graded_size_expression(sizes, distance, request.volume_algorithm);
+  if (request.size_field)
+    set_size_field(request.size_field, request.radius, request.volume_algorithm);
+  else
+    set_graded_size_expression(sizes, distance, request.volume_algorithm);
   gmsh::option::setNumber("Mesh.ElementOrder", request.refinements > 0 ? 1 : request.order);
   gmsh::model::mesh::generate(3);
   throw_if_gmsh_failed();

@@ -33,6 +33,9 @@ struct HemisphereMeshRequest {
   // Delaunay takes most of a large run's mesh time). fine_radius is kept as it is.
   int refinements = 0;
   VolumeAlgorithm volume_algorithm = VolumeAlgorithm::Delaunay;  // see graded_size.hpp
+  // When set, the element size wanted at each point (graded_size.hpp), in place of size,
+  // contact_size and grading; refinements must then be 0.
+  SizeField size_field;
 };
 
 // A dim-3 Mesh with boundaries "surface" (the spherical part) and "top" (z = R), and with

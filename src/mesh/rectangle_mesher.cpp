@@ -76,7 +76,10 @@ Mesh mesh_rectangle(const RectangleMeshRequest& request) {
     gmsh::model::setPhysicalName(1, gmsh::model::addPhysicalGroup(1, curves_of_side[s]), sides[s].name);
   gmsh::model::addPhysicalGroup(2, {surface});
 
-  set_graded_size_field(unit_sizes(request), fine_curves, fine_length(request) / unit, fallback_point);
+  if (request.size_field)
+    set_size_field(request.size_field, unit);
+  else
+    set_graded_size_field(unit_sizes(request), fine_curves, fine_length(request) / unit, fallback_point);
   gmsh::option::setNumber("Mesh.ElementOrder", request.order);
   gmsh::model::mesh::generate(2);
   throw_if_gmsh_failed();

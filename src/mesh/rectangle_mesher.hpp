@@ -20,6 +20,9 @@ struct RectangleMeshRequest {
   int order = 1;
   std::string fine_side = "bottom";  // the side along which contact can happen
   Intervals fine;                    // the fine parts of that side, as parameters t ∈ [0, 1]
+  // When set, the element size wanted at each point (graded_size.hpp), in place of size,
+  // contact_size and grading; refinements must then be 0.
+  SizeField size_field;
 };
 
 // One side of the rectangle, walked counter-clockwise (body on the left): x(t) = a + t (b − a).

@@ -87,6 +87,14 @@ void copy_mesh_spec(const BodySpec& body, Request& request) {
   request.contact_size = body.mesh.contact_size;
   request.grading = body.mesh.grading;
   request.order = body.mesh.order;
+  request.size_field = body.mesh.size_field;
+}
+
+// A request with a size field is sized by it, not graded: the graded count would be no guide.
+// Its caller (an adaptive run) predicts the count from the field; the mesh is checked after.
+void refuse_oversized_graded(double estimate, const SizeField& size_field, const BuildOptions& options,
+                             const std::string& what = "triangles") {
+  if (!size_field) refuse_oversized(estimate, options, what);
 }
 
 CoarseMesh coarse_half_disc_body(const Scene& scene, double max_gap, const BuildOptions& options) {
@@ -94,14 +102,14 @@ CoarseMesh coarse_half_disc_body(const Scene& scene, double max_gap, const Build
   HalfDiscMeshRequest request;
   request.radius = body.radius;
   copy_mesh_spec(body, request);
-  request.refinements = body.mesh.refinements;
+  request.refinements = body.mesh.size_field ? 0 : body.mesh.refinements;
   // The arc P(φ) = (R sin φ, R − R cos φ); see half_disc_mesher.hpp.
   const double R = body.radius;
   Curve arc{[R](double phi) { return Eigen::Vector3d(R * std::sin(phi), R - R * std::cos(phi), 0.0); },
             [](double phi) { return Eigen::Vector3d(std::sin(phi), -std::cos(phi), 0.0); },
             body.symmetry ? 0.0 : -kPi / 2, kPi / 2};
   request.fine = fine_intervals(arc, scene.obstacles, max_gap, body.mesh.contact_size / R);
-  refuse_oversized(gmsh_plugin().estimate_half_disc_triangles(request), options);
+  refuse_oversized_graded(gmsh_plugin().estimate_half_disc_triangles(request), request.size_field, options);
   return generate([&] { return gmsh_plugin().coarse_half_disc(request); });
 }
 
@@ -119,7 +127,7 @@ Mesh mesh_rectangle_body(const Scene& scene, double max_gap, const BuildOptions&
     Curve line{[a, d](double t) { return Eigen::Vector3d(a + t * d); }, [outward](double) { return outward; }};
     request.fine = fine_intervals(line, scene.obstacles, max_gap, body.mesh.contact_size / d.norm());
   }
-  refuse_oversized(gmsh_plugin().estimate_rectangle_triangles(request), options);
+  refuse_oversized_graded(gmsh_plugin().estimate_rectangle_triangles(request), request.size_field, options);
   return generate([&] { return gmsh_plugin().mesh_rectangle(request); });
 }
 
@@ -153,7 +161,7 @@ CoarseMesh coarse_hemisphere_body(const Scene& scene, double max_gap, const Buil
   copy_mesh_spec(body, request);
   request.symmetry_x = body.symmetry_x;
   request.symmetry_y = body.symmetry_y;
-  request.refinements = body.mesh.refinements;
+  request.refinements = body.mesh.size_field ? 0 : body.mesh.refinements;
   // The sphere's lower half seen from its lowest point: at horizontal distance r, direction θ.
   const double R = body.radius;
   auto surface = [R](double r, double angle) {
@@ -163,7 +171,8 @@ CoarseMesh coarse_hemisphere_body(const Scene& scene, double max_gap, const Buil
     return Eigen::Vector3d((surface(r, angle) - Eigen::Vector3d(0, 0, R)) / R);
   };
   request.fine_radius = fine_radius(surface, outward, R, scene.obstacles, max_gap, body.mesh.contact_size);
-  refuse_oversized(gmsh_plugin().estimate_hemisphere_elements(request), options, "tetrahedra");
+  refuse_oversized_graded(gmsh_plugin().estimate_hemisphere_elements(request), request.size_field, options,
+                          "tetrahedra");
   return generate([&] { return gmsh_plugin().coarse_hemisphere(request); });
 }
 
@@ -192,7 +201,7 @@ Mesh mesh_box_body(const Scene& scene, double max_gap, const BuildOptions& optio
       if (centred && ++punches == 1) request.rim_radius = punch->radius;
     }
   if (punches > 1) request.rim_radius = 0;
-  refuse_oversized(gmsh_plugin().estimate_box_elements(request), options, "tetrahedra");
+  refuse_oversized_graded(gmsh_plugin().estimate_box_elements(request), request.size_field, options, "tetrahedra");
   return generate([&] { return gmsh_plugin().mesh_box(request); });
 }
 
@@ -232,7 +241,8 @@ CoarseMesh coarse_body_mesh(const Scene& scene, double max_gap, const BuildOptio
 CoarseMesh body_refinement(const Scene& scene) {
   CoarseMesh how;
   const BodySpec& body = scene.body;
-  if (body.mesh.refinements == 0 || (body.shape != "half_disc" && body.shape != "hemisphere")) return how;
+  if (body.mesh.refinements == 0 || body.mesh.size_field || (body.shape != "half_disc" && body.shape != "hemisphere"))
+    return how;
   how.refinements = body.mesh.refinements;
   how.order = body.mesh.order;
   how.snap = body.shape == "half_disc" ? gmsh_plugin().half_disc_snap() : gmsh_plugin().hemisphere_snap();

@@ -7,6 +7,7 @@
 #include "contactqp/phases.hpp"
 #include "contactqp/run.hpp"
 #include "contactqp/solve.hpp"
+#include "run/adaptive_run.hpp"
 #include "run/distributed_run.hpp"
 #include "run/problem_in_parts.hpp"
 
@@ -29,9 +30,19 @@ void add_error_estimate(const Scene& scene, const Model& model, const QuadraticP
   report.timings.add("estimate", clock.seconds());
 }
 
+// The scene's solver options with the caller's start (RunOptions::initial_guess), if any.
+SolveOptions with_initial_guess(const SolveOptions& solver, const RunOptions& options, const Model& model,
+                                const QuadraticProgram& qp) {
+  SolveOptions with = solver;
+  if (options.initial_guess) with.initial = options.initial_guess(model, qp);
+  return with;
+}
+
 }  // namespace
 
 RunReport run_scene(const Scene& scene, const RunOptions& options) {
+  // Cycles of this function on meshes the error estimate chooses (docs/adaptive.md).
+  if (scene.adapt) return detail::run_adaptive(scene, options);
   // Under mpirun the petsc backend's run is distributed: no process holds the whole mesh.
   if (runs_distributed(scene, options)) return detail::run_scene_distributed(scene, options);
   Stopwatch total;
@@ -77,7 +88,7 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   else if (in_parts)
     report.result = in_parts->solve(scene.solver);
   else if (scene.steps.empty())
-    report.result = solve(*qp, scene.solver);
+    report.result = solve(*qp, with_initial_guess(scene.solver, options, *model, *qp));
   else
     report.result = solve_load_steps(*model, *whole, scene, report.options, &report.steps);
 

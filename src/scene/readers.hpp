@@ -55,6 +55,9 @@ FrictionSpec read_friction(JsonObject friction);
 void read_steps(const nlohmann::json& steps, Scene& scene);
 void check_friction(const Scene& scene);
 
+// adapt_reader.cpp: `adapt`, {"target": 0.01, "max_dofs": 200000, "max_cycles": 12}.
+AdaptSpec read_adapt(JsonObject adapt);
+
 // `transform`.
 TransformSpec read_transform(JsonObject transform, int dim);
 

@@ -274,6 +274,9 @@ Scene parse_scene(const std::string& json_text, const std::string& source) {
   }
   const int dim = scene.dim();
   if (auto estimate = root.optional_boolean("estimate")) scene.estimate = *estimate;
+  if (root.has("adapt")) scene.adapt = detail::read_adapt(root.object("adapt"));
+  if (scene.adapt && !scene.estimate)
+    throw InputError("estimate", "= false: an adaptive run (\"adapt\") needs the error estimate");
   // Tetrahedra fill a Cholesky factor far more than triangles, and nested dissection keeps it
   // down: at 1.6e5 DOFs (4-node, scenes/hertz-sphere.json refined) METIS factorised in 23 s with
   // a 2.2 GB peak against AMD's 129 s and 4.6 GB (docs/3d.md). 2D keeps AMD, measured best there.

@@ -14,7 +14,7 @@ using nlohmann::json;
 
 struct Format {
   Section material, generated_mesh, geo_mesh, body, load, obstacle, contact, transform, solver, bodies_entry, root;
-  Section friction, step;
+  Section friction, step, adapt;
   Format();
 };
 
@@ -71,6 +71,9 @@ Format::Format() {
   // "petsc_options": PETSc's options database entries, as --petsc-options (the PETSc room reads it).
   solver.keys = {{"backend"}, {"linear_solver"}, {"tol"}, {"rho"}, {"max_iterations"}, {"options"}, {"petsc_options"}};
 
+  // An adaptive run (docs/adaptive.md).
+  adapt.keys = {must("target"), {"max_dofs"}, {"max_cycles"}};
+
   // A "bodies" entry: the body's own keys, then its shape as in "body".
   bodies_entry = body;
   bodies_entry.keys.insert(bodies_entry.keys.begin(),
@@ -83,7 +86,8 @@ Format::Format() {
                {"load", &load},         {"obstacle", &obstacle},
                {"contact", &contact},   {"transform", &transform},
                {"solver", &solver},     {"bodies", &bodies_entry},
-               {"steps", &step},        {"estimate"}};
+               {"steps", &step},        {"estimate"},
+               {"adapt", &adapt}};
 }
 
 const Format& format() {

@@ -137,6 +137,15 @@ std::vector<BadScene> bad_2d_scenes() {
       {patch(R"({"contact": {"boundary": "rim"}})"), "contact.boundary = \"rim\""},
       {patch(R"({"transform": 30})"), "transform = 30: must be an object"},
       {patch(R"({"description": 5})"), "description = 5: must be a string"},
+      // Adaptive runs (docs/adaptive.md).
+      {patch(R"({"adapt": {"target": 0}})"), "adapt.target = 0: must lie in (0, 1)"},
+      {patch(R"({"adapt": {"target": 1.5}})"), "adapt.target = 1.5"},
+      {patch(R"({"adapt": {"max_dofs": 1000}})"), "adapt.target"},
+      {patch(R"({"adapt": {"target": 0.01, "max_dofs": 0}})"), "adapt.max_dofs = 0"},
+      {patch(R"({"adapt": {"target": 0.01, "max_cycles": 0}})"), "adapt.max_cycles = 0"},
+      {patch(R"({"adapt": {"target": 0.01, "max_dof": 10}})"), "adapt.max_dof"},
+      {patch(R"({"adapt": 0.01})"), "adapt = 0.01: must be an object"},
+      {patch(R"({"adapt": {"target": 0.01}, "estimate": false})"), "estimate = false: an adaptive run"},
   };
 }
 
@@ -236,6 +245,12 @@ TEST_CASE("the CLI rejects missing files, bad options and unwritable outputs", "
       {"compare " + scene + " --backend-option nlopt.algorithm=LD_FAST --json " + out, "LD_FAST"},
       {"compare " + scene + " --backend-option max_iter=5 --json " + out, "backend option max_iter"},
       {"compare " + directory.path("missing.json"), "missing.json"},
+      {"solve " + scene + " --adapt 2", "--adapt = 2"},
+      {"solve " + scene + " --adapt 0", "--adapt = 0"},
+      {"solve " + scene + " --max-dofs 1000", "--max-dofs = 1000: is the budget of an adaptive run"},
+      {"solve " + scene + " --adapt 0.01 --max-dofs -5", "--max-dofs = -5"},
+      {"solve " + scene + " --adapt 0.01 --no-estimate", "estimate = false"},
+      {"solve " + source_path("scenes/pin-on-plane.json") + " --adapt 0.1", "adapt needs a generated body"},
       {"solve " + scene + " --unknown-flag", "unknown-flag"},
       {"solve", "scene"},
       {"frobnicate", "frobnicate"},
