@@ -69,20 +69,16 @@ NextMesh plan_next_mesh(const Model& model, const Eigen::VectorXd& indicator, do
     }
     return std::pair{elements, error};
   };
-  // Bisection in log(e): the expected η grows with e, the expected elements fall.
+  // The expected η grows with e and the expected elements fall, so the share wanted is the larger
+  // of the largest e that meets the target and the smallest e within the growth allowed: the
+  // end of the range where "met, or too many elements" holds, found by bisection in log(e).
   const double max_elements = limits.max_growth * n_elements;
   double low = std::log(std::max(largest, 1e-300)) - 60, high = std::log(std::max(largest, 1e-300)) + 1;
   for (int k = 0; k < 200 && high - low > 1e-10; ++k) {
     const double middle = 0.5 * (low + high);
     const auto [elements, error] = expected(std::exp(middle));
-    if (std::sqrt(error) <= wanted_estimate && elements <= max_elements)
-      low = middle;  // met within the growth allowed: a coarser mesh may do too
-    else if (elements > max_elements)
-      low = middle;  // too many elements: coarser
-    else
-      high = middle;  // not met: finer
+    (std::sqrt(error) <= wanted_estimate || elements > max_elements ? low : high) = middle;
   }
-  // low is now the share that meets the target with the fewest elements, or reaches the growth limit.
   const double share = std::exp(low);
   const auto [elements, error] = expected(share);
 
