@@ -7,11 +7,13 @@
 # Any failure, sanitizer report or fuzzer finding stops the script with a non-zero status.
 #
 # Options:
-#   --kernels "CORE:THREADS ..."  after stage 1's suite, run its numeric entries again under each
-#                  OpenBLAS kernel CORE (OPENBLAS_CORETYPE) with THREADS BLAS threads
-#                  (OPENBLAS_NUM_THREADS); a kernel this CPU cannot run is skipped with a line.
-#                  Default "Prescott:1" (the oldest kernels, one thread: stage 1 itself runs the
-#                  CPU's own kernels on every core). "all" is "Prescott:1 Prescott:2 Haswell:1
+#   --kernels "CORE:THREADS ..."  run the numeric entries again under each OpenBLAS kernel CORE
+#                  (OPENBLAS_CORETYPE) with THREADS BLAS threads (OPENBLAS_NUM_THREADS): the first
+#                  in stage 2 (the sanitizer build's suite runs under it) and, for the entries
+#                  that stage leaves out (label heavy), after stage 1's suite; each further one
+#                  after stage 1's suite, every numeric entry. A kernel this CPU cannot run is
+#                  skipped with a line. Default "Prescott:1" (the oldest kernels, one thread:
+#                  stage 1 itself runs the CPU's own kernels on every core). "all" is "Prescott:1 Prescott:2 Haswell:1
 #                  Haswell:2 Zen:1 Zen:2 SkylakeX:1 SkylakeX:2"; "none" runs no rerun. An
 #                  assertion that holds under one kernel and fails under another depends on
 #                  round-off, not on what the code guarantees (docs/extremes.md, "Floating-point
@@ -98,15 +100,32 @@ echo "== 1/3 Release build and tests"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j$jobs
 run_ctest build
-# The same build's numeric entries under other BLAS kernels and thread counts: every number the
-# suite asserts must hold whichever kernel rounded it. Left out: the bad-input cases (label
-# input: words and exit codes), the checks of the source tree and of the installed package, and
-# the large cases (the smaller ones run the same code).
+# The numeric entries under other BLAS kernels and thread counts: every number the suite asserts
+# must hold whichever kernel rounded it. Left out: the bad-input cases (label input: words and
+# exit codes), the checks of the source tree and of the installed package, and the large cases
+# (the smaller ones run the same code). The first kernel of the list is the sanitizer stage's
+# (stage 2 runs every numeric entry but the `heavy` ones, in its own build, whose -O1 rounds
+# differently again), so here it reruns only the `heavy` entries; each further kernel reruns
+# them all. Stage 2 under the oldest kernels instead of a third run of the suite: 4.5 minutes
+# of CI (docs/extremes.md, "Floating-point kernels").
+sanitizer_core=""
+sanitizer_threads=1
+first=1
 for kernel in $kernels; do
   core=${kernel%:*}
   threads=${kernel#*:}
   if ! cpu_runs "$core"; then
     echo "run-tests: this CPU cannot run OpenBLAS's $core kernels: skipped"
+    first=0
+    continue
+  fi
+  if [ $first = 1 ]; then
+    first=0
+    sanitizer_core=$core
+    sanitizer_threads=$threads
+    echo "== 1/3 the heavy numeric entries again with OPENBLAS_CORETYPE=$core OPENBLAS_NUM_THREADS=$threads" \
+      "(stage 2 runs the others so)"
+    OPENBLAS_CORETYPE=$core OPENBLAS_NUM_THREADS=$threads run_ctest build -L heavy -LE 'large|sources|input|install'
     continue
   fi
   echo "== 1/3 the numeric entries again with OPENBLAS_CORETYPE=$core OPENBLAS_NUM_THREADS=$threads"
@@ -139,11 +158,21 @@ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_REL
   -DCONTACTQP_WITH_PETSC=ON -DCONTACTQP_SKIP_HEAVY_TESTS=ON
 cmake --build build-asan -j$jobs
 # Leaks are reported at exit and fail the test; tools/lsan.supp names the few that are
-# third-party libraries' own (see the file).
+# third-party libraries' own (see the file). OpenBLAS runs the first kernel of --kernels (above;
+# by default Prescott's, one thread). One thread also when none is given: OpenBLAS (not
+# instrumented, and run with every core in stage 1) keeps its idle threads spinning in
+# sched_yield between calls, so two tests side by side on two cores each fed a spinning thread:
+# a sanitized Hertz sphere took 15.3 s of CPU with two threads and 11.4 s with one.
+if [ -n "$sanitizer_core" ]; then
+  echo "run-tests: stage 2 runs with OPENBLAS_CORETYPE=$sanitizer_core OPENBLAS_NUM_THREADS=$sanitizer_threads"
+  export OPENBLAS_CORETYPE=$sanitizer_core
+fi
+OPENBLAS_NUM_THREADS=$sanitizer_threads \
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1 \
 LSAN_OPTIONS=suppressions=$(pwd)/tools/lsan.supp:print_suppressions=0 \
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   run_ctest_sanitized build-asan -LE 'large|sources'
+unset OPENBLAS_CORETYPE
 stage_done 2
 
 echo "== 3/3 libFuzzer on the scene parser and on mesh files, 30 s each, side by side"
