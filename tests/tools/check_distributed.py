@@ -16,7 +16,6 @@ each cell's error indicator in the pieces against the one-process .vtu's.
 usage: check_distributed.py CONTACTQP MPIEXEC SCENE WORKDIR [RANKS...]"""
 import json
 import os
-import subprocess
 import sys
 
 import numpy
@@ -24,7 +23,7 @@ import numpy
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import vtkXMLPUnstructuredGridReader, vtkXMLUnstructuredGridReader
 
-from checks import MPI_ENV, Checks
+from checks import MPI_ENV, Checks, run
 
 TOL = 1e-8
 
@@ -48,11 +47,6 @@ def read(path):
     order = sorted(by_point)
     out = {name: numpy.array([a[by_point[x][0]] for x in order]) for name, a in arrays.items()}
     return order, out, grid.GetNumberOfCells()
-
-
-def run(command, env):
-    done = subprocess.run(command, env=env, capture_output=True, text=True, timeout=900)
-    return done.returncode, done.stdout, done.stderr
 
 
 def read_cells(path):

@@ -12,12 +12,11 @@ usage: check_every_scene_mpirun.py CONTACTQP MPIEXEC SCENES_DIR WORKDIR [RANKS [
 SKIP: scenes another ctest entry already runs under mpirun against one process (CI time)."""
 import json
 import os
-import subprocess
 import sys
 
 import numpy
 
-from checks import MPI_ENV, Checks
+from checks import MPI_ENV, Checks, run
 
 TOL = 1e-8
 # What the petsc backend does not solve on several processes yet, and the words of its line.
@@ -35,11 +34,6 @@ REFUSED = {
     "two-cylinders-pressure.json": "held only by its contacts",
     "ball-between-plates.json": "held only by its contacts",
 }
-
-
-def run(command, env):
-    done = subprocess.run(command, env=env, capture_output=True, text=True, timeout=900)
-    return done.returncode, done.stdout, done.stderr
 
 
 def close(a, b):

@@ -10,13 +10,14 @@ loads a step scales apart.
 usage: check_mpirun.py CONTACTQP MPIEXEC SCENE WORKDIR"""
 import json
 import os
-import subprocess
 import sys
 
 import numpy
 # The two readers alone: `import vtk` loads every VTK module, 0.5 s more per call.
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import vtkXMLPUnstructuredGridReader, vtkXMLUnstructuredGridReader
+
+from checks import MPI_ENV, run
 
 
 def read(path):
@@ -35,18 +36,13 @@ def read(path):
     return u[order].ravel(), force[order].ravel()
 
 
-def run(command, env):
-    done = subprocess.run(command, env=env, capture_output=True, text=True, timeout=600)
-    return done.returncode, done.stdout, done.stderr
-
-
 def relative(a, b):
     return numpy.linalg.norm(a - b) / max(numpy.linalg.norm(b), 1e-300)
 
 
 def main(cli, mpiexec, scene, workdir):
     os.makedirs(workdir, exist_ok=True)
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
+    env = MPI_ENV
     mpi = [mpiexec, "-n", "2", "--oversubscribe"]
     failures = []
 

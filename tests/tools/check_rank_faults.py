@@ -10,22 +10,18 @@ one whose solve needs both ranks), every output asked for.
 usage: check_rank_faults.py CONTACTQP MPIEXEC SCENE PHASE KIND"""
 import json
 import os
-import subprocess
 import sys
 import tempfile
 import time
+
+from checks import MPI_ENV, Checks, run
 
 STATUS = {"input": 2, "error": 1, "memory": 1}
 WORDS = {"input": "CONTACTQP_TEST_FAULT", "error": "CONTACTQP_TEST_FAULT", "memory": "out of memory"}
 
 
 def main(cli, mpiexec, scene_path, phase, kind):
-    failures = []
-
-    def check(condition, text):
-        print(("ok   " if condition else "FAIL ") + text)
-        if not condition:
-            failures.append(text)
+    check = Checks()
 
     with open(scene_path) as file:
         scene = json.load(file)
@@ -34,25 +30,24 @@ def main(cli, mpiexec, scene_path, phase, kind):
         path = os.path.join(work, "scene.json")
         with open(path, "w") as file:
             json.dump(scene, file)
-        env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-                   OMPI_MCA_rmaps_base_oversubscribe="1", CONTACTQP_TEST_FAULT="1:%s:%s:5" % (phase, kind))
+        env = dict(MPI_ENV, CONTACTQP_TEST_FAULT="1:%s:%s:5" % (phase, kind))
         command = [mpiexec, "-n", "2", "--oversubscribe", cli, "solve", path, "--backend", "petsc", "--quiet",
                    "--json", os.path.join(work, "out.json"), "--csv", os.path.join(work, "out.csv"),
                    "--vtu", os.path.join(work, "out.pvtu")]
         start = time.monotonic()
-        done = subprocess.run(command, env=env, capture_output=True, text=True, timeout=300)
+        code, out, err = run(command, env, timeout=300)
         seconds = time.monotonic() - start
         left = sorted(os.listdir(work))
-    print(done.stderr.strip())
+    print(err.strip())
     # mpirun may add its own notice of how a rank ended; contactqp's part is one line.
-    lines = [line for line in done.stderr.splitlines() if line.startswith("contactqp")]
-    check(done.returncode == STATUS[kind], "exit status %d (expected %d)" % (done.returncode, STATUS[kind]))
+    lines = [line for line in err.splitlines() if line.startswith("contactqp")]
+    check(code == STATUS[kind], "exit status %d (expected %d)" % (code, STATUS[kind]))
     check(len(lines) == 1, "one line of contactqp's (%d)" % len(lines))
     check(all(WORDS[kind] in line and "rank 1" in line for line in lines), "the line names the fault and rank 1")
-    check(not done.stdout.strip(), "nothing on stdout: %r" % done.stdout[:200])
+    check(not out.strip(), "nothing on stdout: %r" % out[:200])
     check(seconds <= 70, "ended in %.1f s (at most 70)" % seconds)
     check(left == ["scene.json"], "no file written: %s" % left)
-    return 1 if failures else 0
+    return 1 if check.failures else 0
 
 
 if __name__ == "__main__":
