@@ -5,7 +5,7 @@
 
 #include "contact.hpp"
 #include "contactqp/errors.hpp"
-#include "fe/shape_functions.hpp"
+#include "mesh/shape_functions.hpp"
 
 namespace contactqp::detail {
 

@@ -12,7 +12,7 @@
 #include <optional>
 
 #include "contact.hpp"
-#include "fe/shape_functions.hpp"
+#include "mesh/shape_functions.hpp"
 
 namespace contactqp::detail {
 namespace {

@@ -16,6 +16,7 @@
 #include "contactqp/phases.hpp"
 #include "fe/node_elements.hpp"
 #include "fe/stiffness_matrix.hpp"
+#include "model/model_parts.hpp"
 #include "model/rigid_body_modes.hpp"
 #include "petsc/petsc_runtime.hpp"
 #include "qp/bound_transform.hpp"

@@ -10,7 +10,7 @@
 #include <cmath>
 
 #include "contactqp/model.hpp"
-#include "shape_functions.hpp"
+#include "mesh/shape_functions.hpp"
 
 namespace contactqp {
 namespace {

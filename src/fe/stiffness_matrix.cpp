@@ -17,6 +17,18 @@ namespace contactqp::detail {
 
 namespace {
 
+// K_e in the nodes' DOF frames: Tᵀ K_e T with T block-diagonal (identity at most nodes).
+void rotate_to_dof_frames(const Model& model, const int* v, int npe, Eigen::MatrixXd& Ke) {
+  if (model.frame_of_node.empty()) return;
+  bool any = false;
+  for (int i = 0; i < npe; ++i) any = any || model.frame_of_node[v[i]] >= 0;
+  if (!any) return;
+  const int dim = model.dim;
+  Eigen::MatrixXd T = Eigen::MatrixXd::Identity(dim * npe, dim * npe);
+  for (int i = 0; i < npe; ++i) T.block(dim * i, dim * i, dim, dim) = dof_frame(model, v[i]);
+  Ke = T.transpose() * Ke * T;
+}
+
 // At most two threads (this machine's cores); one below this many elements per thread.
 constexpr unsigned kMaxThreads = 2;
 constexpr int kElementsPerThread = 4096;
@@ -115,6 +127,11 @@ void build_pattern(const Model& model, const std::vector<char>& owned, Eigen::Sp
 }
 
 }  // namespace
+
+Eigen::MatrixXd dof_frame_rotated(const Model& model, const int* v, int npe, Eigen::MatrixXd Ke) {
+  rotate_to_dof_frames(model, v, npe, Ke);
+  return Ke;
+}
 
 void assemble_stiffness(const Model& model, const std::vector<char>& elements, Eigen::SparseMatrix<double>& K,
                         Eigen::VectorXd& f) {

@@ -14,17 +14,10 @@ namespace contactqp::detail {
 void assemble_stiffness(const Model& model, const std::vector<char>& elements, Eigen::SparseMatrix<double>& K,
                         Eigen::VectorXd& f);
 
-// Force loads into f over the free DOFs: f_a += Tᵀ f_x at each node (T its DOF frame, f_x
-// model.nodal_force); forces at prescribed DOFs go to the reactions (assembly.cpp).
-void add_force_loads(const Model& model, Eigen::VectorXd& f);
-
 // K_e in the nodes' DOF frames: Tᵀ K_e T with T block-diagonal (the identity at most nodes);
-// `v` the element's npe nodes (assembly.cpp).
+// `v` the element's npe nodes.
 Eigen::MatrixXd dof_frame_rotated(const Model& model, const int* v, int npe, Eigen::MatrixXd Ke);
 
-// InputError when K (its largest entry, whether all are finite) or f leave double precision:
-// units so far from one that the numbers overflow or lose their digits (assembly.cpp).
-void refuse_unrepresentable(const Model& model, double largest_k, bool k_finite, double largest_f, bool f_finite);
 // −K_free,prescribed · u_prescribed over the free DOFs, for the model's prescribed values: the
 // prescribed displacements' share of f on its own, for a load step (apply_load_step). Only the
 // elements with a non-zero prescribed DOF are visited. add_prescribed_forces() subtracts the

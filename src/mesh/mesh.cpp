@@ -10,7 +10,7 @@
 #include <unordered_map>
 
 #include "contactqp/number_format.hpp"
-#include "fe/shape_functions.hpp"
+#include "mesh/shape_functions.hpp"
 
 namespace contactqp {
 namespace {

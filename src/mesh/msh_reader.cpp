@@ -11,7 +11,7 @@
 #include <unordered_set>
 
 #include "contactqp/errors.hpp"
-#include "io/input_file.hpp"
+#include "scene/input_file.hpp"
 
 namespace contactqp::detail {
 namespace {

@@ -4,6 +4,7 @@
 #include <functional>
 
 #include "contactqp/model.hpp"
+#include "fe/loads.hpp"
 #include "mesh/refine.hpp"
 
 namespace contactqp::detail {
@@ -95,16 +96,7 @@ Eigen::MatrixXd motions_held_by_contact(Model& model, const std::function<Eigen:
 // scene's rotation applied): K's null space, which assemble_qp puts in qp.null_space.
 Eigen::MatrixXd free_modes_on_dofs(const Model& model, const Eigen::MatrixXd& at_nodes);
 
-// ../fe/loads.cpp: consistent nodal forces (dim·n_nodes, global axes, for the body's thickness in 2D)
-// of the force loads of `scene` on `mesh` — both already in the global frame. Point loads act
-// at `point_nodes[l]` for load l (chosen in the scene's own frame, see point_load_nodes).
-Eigen::VectorXd nodal_forces(const Scene& scene, const Mesh& mesh, const std::vector<int>& point_nodes);
-
-// ../fe/loads.cpp: the node each point load acts at (−1 for other loads): the nearest node to
-// its `at`, or its named point. Adds a warning when that node is far from `at`.
-std::vector<int> point_load_nodes(const Scene& scene, const Mesh& mesh, std::vector<std::string>& warnings);
-
-// ../fe/loads.cpp: each load's share (model.hpp's LoadShare) on the model's mesh: its nodal
+// load_shares.cpp: each load's share (model.hpp's LoadShare) on the model's mesh: its nodal
 // forces (point loads at point_nodes[l]) and the DOFs it prescribes, for the loads of
 // model.scene (global frame; displacement values along the DOF frames).
 std::vector<LoadShare> load_shares(const Model& model, const std::vector<int>& point_nodes);
@@ -114,7 +106,15 @@ std::vector<LoadShare> load_shares(const Model& model, const std::vector<int>& p
 std::vector<LoadShare> load_shares(const Model& model, const NodesOfBoundary& nodes_of,
                                    const std::function<Eigen::VectorXd(std::size_t load)>& nodal_force);
 
-// ../fe/assembly.cpp: model.prescribed and model.nodal_force for one load step, the loads'
+// assembly.cpp: force loads into f over the free DOFs: f_a += Tᵀ f_x at each node (T its DOF frame, f_x
+// model.nodal_force); forces at prescribed DOFs go to the reactions.
+void add_force_loads(const Model& model, Eigen::VectorXd& f);
+
+// assembly.cpp: InputError when K (its largest entry, whether all are finite) or f leave double precision:
+// units so far from one that the numbers overflow or lose their digits.
+void refuse_unrepresentable(const Model& model, double largest_k, bool k_finite, double largest_f, bool f_finite);
+
+// assembly.cpp: model.prescribed and model.nodal_force for one load step, the loads'
 // shares scaled by `factors` (apply_load_step's first half; the rigid surfaces' forces too).
 // InputError naming `step` when two loads then prescribe one DOF to different values.
 void set_step_loads(Model& model, const std::vector<double>& factors, const std::string& step);

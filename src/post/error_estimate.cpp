@@ -14,7 +14,7 @@
 #include "contact/contact.hpp"
 #include "contactqp/timer.hpp"
 #include "estimate_sums.hpp"
-#include "fe/shape_functions.hpp"
+#include "mesh/shape_functions.hpp"
 
 namespace contactqp {
 namespace {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "contactqp/estimate.hpp"
-#include "fe/shape_functions.hpp"
+#include "mesh/shape_functions.hpp"
 
 namespace contactqp {
 namespace {

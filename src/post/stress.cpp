@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "contactqp/post.hpp"
-#include "fe/shape_functions.hpp"
+#include "mesh/shape_functions.hpp"
 
 namespace contactqp {
 namespace {

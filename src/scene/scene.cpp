@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "contactqp/errors.hpp"
-#include "io/input_file.hpp"
 #include "readers.hpp"
+#include "scene/input_file.hpp"
 #include "scene_keys.hpp"
 
 namespace contactqp {

@@ -6,7 +6,7 @@
 #include <set>
 
 #include "contactqp/mesh.hpp"
-#include "fe/shape_functions.hpp"
+#include "mesh/shape_functions.hpp"
 
 namespace contactqp::testing {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "contactqp/model.hpp"
-#include "fe/shape_functions.hpp"
+#include "mesh/shape_functions.hpp"
 
 using namespace contactqp;
 

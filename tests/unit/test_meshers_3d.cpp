@@ -14,12 +14,12 @@
 
 #include "contactqp/errors.hpp"
 #include "contactqp/mesh.hpp"
-#include "fe/shape_functions.hpp"
 #include "mesh/box_mesher.hpp"
 #include "mesh/gmsh_model.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/half_disc_mesher.hpp"
 #include "mesh/hemisphere_mesher.hpp"
+#include "mesh/shape_functions.hpp"
 #include "mesh_volume.hpp"
 #include "qp/pi.hpp"
 

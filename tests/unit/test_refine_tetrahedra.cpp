@@ -11,9 +11,9 @@
 #include <set>
 
 #include "contactqp/mesh.hpp"
-#include "fe/shape_functions.hpp"
 #include "mesh/hemisphere_mesher.hpp"
 #include "mesh/refine.hpp"
+#include "mesh/shape_functions.hpp"
 #include "mesh_volume.hpp"
 #include "qp/pi.hpp"
 

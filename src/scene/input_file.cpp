@@ -1,4 +1,4 @@
-#include "io/input_file.hpp"
+#include "scene/input_file.hpp"
 
 #include <cerrno>
 #include <cstring>

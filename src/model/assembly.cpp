@@ -6,25 +6,13 @@
 #include "contact/contact.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/model.hpp"
+#include "fe/stiffness_matrix.hpp"
 #include "model/coarse_space.hpp"
 #include "model/model_parts.hpp"
 #include "model/rigid_body_modes.hpp"
-#include "stiffness_matrix.hpp"
 
 namespace contactqp {
 namespace {
-
-// K_e in the nodes' DOF frames: Tᵀ K_e T with T block-diagonal (identity at most nodes).
-void rotate_to_dof_frames(const Model& model, const int* v, int npe, Eigen::MatrixXd& Ke) {
-  if (model.frame_of_node.empty()) return;
-  bool any = false;
-  for (int i = 0; i < npe; ++i) any = any || model.frame_of_node[v[i]] >= 0;
-  if (!any) return;
-  const int dim = model.dim;
-  Eigen::MatrixXd T = Eigen::MatrixXd::Identity(dim * npe, dim * npe);
-  for (int i = 0; i < npe; ++i) T.block(dim * i, dim * i, dim, dim) = dof_frame(model, v[i]);
-  Ke = T.transpose() * Ke * T;
-}
 
 // Units so far from one that K or f leave double precision are bad input, named as the scene
 // wrote it: beyond the largest double they overflow to Inf; below DBL_MIN/DBL_EPSILON the
@@ -74,10 +62,6 @@ void refuse_unrepresentable(const Model& model, double largest_k, bool k_finite,
                      "too small for these units); use other units");
 }
 
-Eigen::MatrixXd dof_frame_rotated(const Model& model, const int* v, int npe, Eigen::MatrixXd Ke) {
-  rotate_to_dof_frames(model, v, npe, Ke);
-  return Ke;
-}
 void set_step_loads(Model& model, const std::vector<double>& factors, const std::string& step) {
   const int n = static_cast<int>(model.prescribed.size());
   Eigen::VectorXd prescribed = Eigen::VectorXd::Zero(n), nodal_force = Eigen::VectorXd::Zero(n);

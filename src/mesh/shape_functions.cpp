@@ -1,4 +1,4 @@
-#include "shape_functions.hpp"
+#include "mesh/shape_functions.hpp"
 
 namespace contactqp::detail {
 namespace {
