@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Memory per rank of the distributed run (docs/petsc.md, "Distributed runs"): one scene solved
+"""Memory per rank of the distributed run (docs/petsc-measurements.md, "Distributed runs"): one scene solved
 by the petsc backend on 1, 2, 4, 8 ranks (the distributed path, --distributed on one rank;
 --oversubscribe beyond the cores), each rank under /usr/bin/time -v (its peak resident set) and
 --phase-memory (its peak in each phase and its resident memory when each phase starts). From

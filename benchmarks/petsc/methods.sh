@@ -1,6 +1,6 @@
 #!/bin/sh
 # The petsc backend's method against TAO's bound-constrained methods on the same bound form
-# (docs/petsc.md, "pdas against TAO"): one line per scene and method with status, outer and
+# (docs/petsc-measurements.md, "pdas against TAO"): one line per scene and method with status, outer and
 # Krylov iterations and the backend's seconds (factorize + solve), all in one run so that the
 # ratios compare on a shared machine.
 #

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The PETSc solver of K and the petsc backend's contact solve, before and after the multigrid
-work of docs/petsc.md ("The preconditioner", "The contact solve"), in one run so that the ratios
+work of docs/petsc-measurements.md ("The preconditioner", "The contact solve"), in one run so that the ratios
 compare on a shared machine. On one scene (default scenes/hertz-sphere-large.json), RANKS ranks:
 
   before / after, whole run     [mpirun -n RANKS] contactqp solve SCENE --backend petsc
@@ -29,7 +29,7 @@ import time
 
 SOURCE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-# The solvers of K compared (docs/petsc.md, "The preconditioner"); empty: the build's default.
+# The solvers of K compared (docs/petsc-design.md, "The preconditioner"); empty: the build's default.
 HYPRE = ("-pc_hypre_type boomeramg -pc_hypre_boomeramg_strong_threshold 0.5 -pc_hypre_boomeramg_coarsen_type HMIS "
          "-pc_hypre_boomeramg_interp_type ext+i -pc_hypre_boomeramg_agg_nl 1 -pc_hypre_boomeramg_P_max 4")
 # BoomerAMG's systems options: nodal coarsening, and the rigid-body modes (the near-null space

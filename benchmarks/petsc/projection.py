@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The memory figures of docs/petsc.md, "Distributed runs: memory per rank", from the measured
+"""The memory figures of docs/petsc-measurements.md, "Distributed runs: memory per rank", from the measured
 peaks: benchmarks/petsc/results/distributed/peaks.csv (one row per rank of each run: its peak
 resident memory in KiB and how it was measured), or a memory.csv that benchmarks/petsc/memory.py
 wrote (its peak_mib column).

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""A load path at scale on the distributed run (docs/petsc.md, "Load steps"): a scene pushed in
+"""A load path at scale on the distributed run (docs/petsc-measurements.md, "Load steps"): a scene pushed in
 STEPS equal steps (its first displacement load named and scaled 1/STEPS, 2/STEPS, ..., 1) solved
 by the petsc backend under mpirun -n RANKS, beside one linear solve of the same A by the same KSP
 and hierarchy (--no-contact: the contact solve's reference, measured in the same session). Each

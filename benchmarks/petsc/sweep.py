@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The petsc backend's distributed run on Hertz's sphere from 5e4 to 1.5e6 DOFs (docs/petsc.md,
+"""The petsc backend's distributed run on Hertz's sphere from 5e4 to 1.5e6 DOFs (docs/petsc-measurements.md,
 "The sweep"): for each level (element order, contact_size, refinements) and each rank count,
 
   contact      [mpirun -n N] contactqp solve SCENE            (1 rank: --distributed)

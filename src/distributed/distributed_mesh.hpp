@@ -1,4 +1,4 @@
-// A body's mesh under mpirun, no rank holding it whole (docs/petsc.md, "Distributed runs").
+// A body's mesh under mpirun, no rank holding it whole (docs/petsc-design.md, "Distributed runs").
 //
 // Rank 0 meshes the coarse body (Gmsh; body.mesh.refinements makes it 4^n or 8^n times
 // coarser than the body's mesh) and PT-Scotch splits its elements into one part per rank. Each

@@ -1,4 +1,4 @@
-// The model of a body under mpirun, each rank holding its part of it (docs/petsc.md,
+// The model of a body under mpirun, each rank holding its part of it (docs/petsc-design.md,
 // "Distributed runs"): its part of the mesh (distributed_mesh.hpp), the boundary conditions,
 // loads and contact candidates of its nodes, and the numbering that joins the parts — each free
 // DOF a row of the distributed matrix, each candidate of a rank's own nodes a contact row.

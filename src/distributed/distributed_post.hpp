@@ -1,4 +1,4 @@
-// Post-processing of a distributed solution (docs/petsc.md, "Distributed runs"), the same
+// Post-processing of a distributed solution (docs/petsc-design.md, "Distributed runs"), the same
 // numbers as one process gets:
 // - the contact summary and the Hertz and Boussinesq comparisons on rank 0, from the contact
 //   rows gathered there (a surface's worth: the candidates, and the contact boundary's faces at

@@ -1,4 +1,4 @@
-// The contact QP of a distributed model in the petsc backend's bound form (docs/petsc.md):
+// The contact QP of a distributed model in the petsc backend's bound form (docs/petsc-design.md):
 // with v = T u_C at each candidate node (bound_transform.hpp) and u = Q v, row i of B u ≤ g is
 // the bound v_i ≤ g_i, and the problem is
 //

@@ -1,6 +1,6 @@
 // The split of a coarse mesh's elements between the ranks (distributed_mesh.hpp), made on the
 // rank that meshed it: PT-Scotch through PETSc's MatPartitioning on the elements' dual graph
-// (elements that share a face are neighbours), as the K partition of docs/petsc.md is made on
+// (elements that share a face are neighbours), as the K partition of docs/petsc-design.md is made on
 // the node graph. -mat_partitioning_type in the PETSc options chooses another partitioner.
 #pragma once
 

@@ -1,5 +1,5 @@
 // run_scene() with each process holding only its part of everything that grows with the mesh
-// (docs/petsc.md, "Distributed runs"): the mesh, the model, A = QᵀKQ, the vectors and the
+// (docs/petsc-design.md, "Distributed runs"): the mesh, the model, A = QᵀKQ, the vectors and the
 // ParaView output; load steps along the path on the same A and hierarchy. Taken for the petsc
 // backend under mpirun (or with RunOptions::distributed);
 // the report is run_scene()'s, the summary and the result files on rank 0, and every rank writes
@@ -155,7 +155,7 @@ DistributedState state_of(const DistributedModel& model, const DistributedSoluti
   return state;
 }
 
-// The load path (docs/petsc.md, "Load steps on the distributed run"), frictionless: each step
+// The load path (docs/petsc-design.md, "Load steps on the distributed run"), frictionless: each step
 // sets the loads' shares scaled by its factors, then f, b and the bounds (A and its hierarchy
 // stay: the first step sets the hierarchy up, every later one starts from the answer before
 // it). Each step is certified within the solve phase. Ends at the first step that does not

@@ -1,4 +1,4 @@
-// The distributed run (docs/petsc.md, "Distributed runs"): run_scene() with each process
+// The distributed run (docs/petsc-design.md, "Distributed runs"): run_scene() with each process
 // holding only its part of everything that grows with the mesh. run_distributed.cpp registers
 // it with run_scene() (run/distributed_run.hpp) where the PETSc room is linked in; the PETSc
 // plugin's callers register the same two functions, the run reached through the plugin.

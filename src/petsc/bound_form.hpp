@@ -1,4 +1,4 @@
-// The contact QP as a bound-constrained QP (the petsc backend's form, docs/petsc.md).
+// The contact QP as a bound-constrained QP (the petsc backend's form, docs/petsc-design.md).
 //
 // The rows of B fall into groups that share no column (one group per candidate node: its one
 // or two rows at its free DOFs). Each group's DOFs u_C get new variables v_C = T u_C, where T's

@@ -3,7 +3,7 @@
 //     minimise ½ vᵀ A v − bᵀ v   subject to   v_i ≤ upper_i  (i bounded)
 //
 // by the primal-dual active-set method (a semismooth Newton method) at about the cost of one
-// linear multigrid solve of A (docs/petsc.md, "The contact solve"):
+// linear multigrid solve of A (docs/petsc-measurements.md, "The contact solve"):
 //   - one multigrid hierarchy (multigrid.hpp), set up once, on A;
 //   - each step's system with the active rows fixed is W x = rhs (masked_system.hpp), solved by
 //     CG preconditioned by that hierarchy, whose coarse operators follow the fixed rows by local
@@ -44,7 +44,7 @@ struct PetscBoundQp {
 
 // A loose step's CG reduces its own initial residual by this factor (never below the final
 // rule): the next active set needs the step's direction, not its digits. 0.1 measured best
-// (docs/petsc.md, "Inexact steps"); 2–4 CG iterations a step. The backend option
+// (docs/petsc-measurements.md, "Inexact steps"); 2–4 CG iterations a step. The backend option
 // loose_reduction changes it.
 constexpr double kLooseReduction = 0.1;
 

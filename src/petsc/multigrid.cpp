@@ -18,7 +18,7 @@ const char* const kMultigridOptions[][2] = {
 
 namespace {
 
-// GAMG as measured best for this code's elasticity matrices (docs/petsc.md, "GAMG's settings
+// GAMG as measured best for this code's elasticity matrices (docs/petsc-measurements.md, "GAMG's settings
 // (measured)"): threshold 0.02, the smoothers' own eigenvalue estimates (with smoothed
 // aggregation's, a coarse operator changed by truncation.hpp kept stale bounds and CG stopped
 // with KSP_DIVERGED_INDEFINITE_PC), and from kMultigridOptions the graph squared on the first

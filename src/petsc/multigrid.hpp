@@ -1,6 +1,6 @@
 // The preconditioner of the PETSc solver of K and of the petsc backend's A: multigrid with a
 // P1 level for quadratic elements (the P2 → P1 nodal interpolation as the first transfer, its
-// Galerkin operator PᵀAP solved by GAMG), GAMG on A itself otherwise. docs/petsc.md ("The
+// Galerkin operator PᵀAP solved by GAMG), GAMG on A itself otherwise. docs/petsc-design.md ("The
 // preconditioner") has the comparison behind the choice: on the 10-node spheres the P1 level
 // makes the set-up 4–8 times cheaper than GAMG on A at fewer CG iterations, since the AMG then
 // aggregates an eighth of the rows with a third of their nonzeros each.

@@ -1,7 +1,7 @@
 // The petsc backend: the contact QP brought to bound form (bound_form.hpp) and solved by PETSc
 // on the distributed matrix (petsc_bound_qp.cpp): a primal-dual active-set loop whose
 // steps are KSP solves (CG + GAMG with the rigid-body modes) by default, TAO with
-// method=tao. docs/petsc.md has the design, its measurements and mpirun.
+// method=tao. Use: docs/petsc.md; design: docs/petsc-design.md; figures: docs/petsc-measurements.md.
 //
 //   transform   A = QᵀKQ, b = Qᵀf; row i of Bu ≤ g becomes v_i ≤ g_i     (per node, Eigen)
 //   iterate     the bound QP in PETSc, every rank holding its rows of A

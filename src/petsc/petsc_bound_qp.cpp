@@ -5,7 +5,7 @@
 // rest with KSP on the full-size matrix whose active rows and columns are replaced by the
 // identity (MatZeroRowsColumns). Keeping the full size keeps the rigid-body near-null space
 // meaningful for GAMG; a reduced matrix (MatCreateSubMatrix of the free rows, what TAO's
-// active-set methods do) loses it. docs/petsc.md has the measurements behind the choice.
+// active-set methods do) loses it. docs/petsc-measurements.md has the measurements behind the choice.
 //
 // tao: TAO's bound-constrained methods (TAOBNLS unless -tao_type says otherwise) on the same
 // bound form, kept as the alternative the measurements compare against.
@@ -187,7 +187,7 @@ void solve_pdas(Work& work, const BoundQp& problem, const BoundQpOptions& option
   // GAMG set up afresh for each active set: reusing the first step's interpolation (PETSc's
   // default) reuses its Chebyshev eigenvalue estimates too, which do not hold for the matrix
   // with fixed rows (KSP_DIVERGED_INDEFINITE_PC on disc-in-vgroove). -pc_gamg_reuse_interpolation
-  // overrides it (docs/petsc.md measures both).
+  // overrides it (docs/petsc-measurements.md measures both).
   PCGAMGSetReuseInterpolation(pc, PETSC_FALSE);
   KSPSetNormType(work.ksp, KSP_NORM_UNPRECONDITIONED);
   KSPSetTolerances(work.ksp, 0.0, 0.0, PETSC_DEFAULT, kMaxKrylovIterations);

@@ -1,5 +1,5 @@
 // Under mpirun with the petsc backend, which elements each rank assembles (par_qp.hpp's
-// RankShare, docs/petsc.md): the mesh's nodes are partitioned (PT-Scotch through PETSc), the
+// RankShare, docs/petsc-design.md): the mesh's nodes are partitioned (PT-Scotch through PETSc), the
 // DOFs of each part get consecutive rows of the distributed matrix, and a rank assembles the
 // elements whose first free DOF's row lies in its block of rows (PETSc's split into contiguous
 // blocks), so that what it adds is mostly its own rows.

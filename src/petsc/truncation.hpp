@@ -5,7 +5,7 @@
 // The fine operator of an active-set step is W = D_F A D_F + D_X diag(A) (masked_system.hpp:
 // the free rows F as in A, the fixed rows X decoupled). Preconditioning W with the hierarchy
 // of A — its coarse levels still coupling the fixed rows — doubled the CG iterations of a step
-// (41 against 19 on a 3.1e5-DOF sphere, docs/petsc.md). With the same interpolations P_l the
+// (41 against 19 on a 3.1e5-DOF sphere, docs/petsc-measurements.md). With the same interpolations P_l the
 // Galerkin operators of W are A_{l+1} = P_lᵀ A_l P_l starting from A_0 = W; when rows are fixed
 // or released W changes only in their rows and columns, by ΔW, and so each coarse operator
 // changes by ΔA_{l+1} = P_lᵀ ΔA_l P_l, which lives near those rows: a few thousand entries

@@ -1,4 +1,4 @@
-// The petsc backend's change of variables at one node (docs/petsc.md, "The bound form"): the
+// The petsc backend's change of variables at one node (docs/petsc-design.md, "The bound form"): the
 // node's contact rows become bounds on single variables. Shared by the serial bound form
 // (solvers/bound_form.cpp) and the distributed one (src/distributed/), which applies it to each
 // element's matrix.

@@ -1,4 +1,4 @@
-// A run in which no process holds the whole mesh, model or output (docs/petsc.md, "Distributed
+// A run in which no process holds the whole mesh, model or output (docs/petsc-design.md, "Distributed
 // runs"): each process meshes, assembles, solves and writes only its part. run_scene() hands the
 // whole run to it when one is registered and takes the scene and options; the library that
 // knows about processes registers it from its own file (src/distributed/ does, for the petsc

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""ctest entry for the distributed run (docs/petsc.md, "Distributed runs"): the petsc backend
+"""ctest entry for the distributed run (docs/petsc-design.md, "Distributed runs"): the petsc backend
 under `mpirun -n N` for each N of RANKS (default 1 2 4; one process takes it too, --distributed
 being redundant there) against one process of active_set (CHOLMOD, a direct solve of each step) on
 the same mesh. Checks, relative 1e-8:

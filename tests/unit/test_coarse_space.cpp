@@ -1,5 +1,5 @@
 // The P1 level of quadratic meshes (contactqp/coarse_space.hpp, filled by assemble_qp): the
-// multigrid hint of the PETSc solvers of K (docs/petsc.md, "The preconditioner").
+// multigrid hint of the PETSc solvers of K (docs/petsc-design.md, "The preconditioner").
 #include <catch2/catch.hpp>
 
 #include "contactqp/model.hpp"

@@ -1,11 +1,11 @@
 // The contact QP of a run on several processes (mpirun), held in parts: the PETSc room's
-// distributed problem (library cqp_petsc, src/petsc/; docs/petsc.md, "mpirun"). The generic
+// distributed problem (library cqp_petsc, src/petsc/; docs/petsc-design.md, "mpirun"). The generic
 // QuadraticProgram, SolveOptions and certificate know nothing of processes; this type carries
 // what they leave out, and its functions run the generic steps with the sums over the ranks.
 //
 // Today each rank holds a share of K (the elements it owns; the shares sum to K) and f, B, g,
 // the rows and the near-null space whole. The seam between the solver and the distributed
-// data (docs/petsc.md, "The room"): a solver reads only this type, so the data may move to
+// data (docs/petsc-design.md, "The room"): a solver reads only this type, so the data may move to
 // rank-local rows (with a global DOF numbering) without touching the solver's interface.
 #pragma once
 
