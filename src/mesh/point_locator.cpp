@@ -8,9 +8,12 @@
 
 namespace contactqp::detail {
 
-PointLocator::PointLocator(int dim, std::vector<Eigen::Vector3d> vertices, std::vector<std::array<int, 4>> simplices)
+PointLocator::PointLocator(int dim, std::vector<Eigen::Vector3d> vertices, std::vector<std::array<int, 4>> simplices,
+                           const std::vector<Box>& boxes)
     : dim_(dim), vertices_(std::move(vertices)), simplices_(std::move(simplices)) {
   if (simplices_.empty()) throw std::invalid_argument("PointLocator: no mesh");
+  if (!boxes.empty() && boxes.size() != simplices_.size())
+    throw std::invalid_argument("PointLocator: one box per simplex, or none");
   inverse_.reserve(simplices_.size());
   for (const auto& s : simplices_) {
     Eigen::Matrix3d edges = Eigen::Matrix3d::Identity();  // 2D: the z column stays e_z
@@ -23,6 +26,10 @@ PointLocator::PointLocator(int dim, std::vector<Eigen::Vector3d> vertices, std::
     low_ = low_.cwiseMin(v);
     high = high.cwiseMax(v);
   }
+  for (const Box& box : boxes) {
+    low_ = low_.cwiseMin(box.low);
+    high = high.cwiseMax(box.high);
+  }
   // About one simplex per cell.
   const double extent = (high - low_).head(dim_).maxCoeff();
   const double target = extent / std::max(1.0, std::pow(static_cast<double>(simplices_.size()), 1.0 / dim_));
@@ -33,23 +40,28 @@ PointLocator::PointLocator(int dim, std::vector<Eigen::Vector3d> vertices, std::
   const std::size_t n_cells = static_cast<std::size_t>(cells_[0]) * cells_[1] * cells_[2];
   // Two passes: count, then fill.
   std::vector<int> count(n_cells + 1, 0);
-  auto for_cells = [&](const std::array<int, 4>& s, auto&& visit) {
+  auto for_cells = [&](int simplex, auto&& visit) {
+    const std::array<int, 4>& s = simplices_[simplex];
     Eigen::Vector3d lo = vertices_[s[0]], hi = lo;
     for (int k = 1; k <= dim_; ++k) {
       lo = lo.cwiseMin(vertices_[s[k]]);
       hi = hi.cwiseMax(vertices_[s[k]]);
+    }
+    if (!boxes.empty()) {
+      lo = lo.cwiseMin(boxes[simplex].low);
+      hi = hi.cwiseMax(boxes[simplex].high);
     }
     const std::array<int, 3> a = cell_of(lo), b = cell_of(hi);
     for (int i = a[0]; i <= b[0]; ++i)
       for (int j = a[1]; j <= b[1]; ++j)
         for (int l = a[2]; l <= b[2]; ++l) visit((static_cast<std::size_t>(l) * cells_[1] + j) * cells_[0] + i);
   };
-  for (const auto& s : simplices_) for_cells(s, [&](std::size_t c) { ++count[c + 1]; });
+  const int n_simplices = static_cast<int>(simplices_.size());
+  for (int s = 0; s < n_simplices; ++s) for_cells(s, [&](std::size_t c) { ++count[c + 1]; });
   for (std::size_t c = 0; c < n_cells; ++c) count[c + 1] += count[c];
   cell_start_ = count;
   cell_simplices_.resize(count.back());
-  for (int s = 0; s < static_cast<int>(simplices_.size()); ++s)
-    for_cells(simplices_[s], [&](std::size_t c) { cell_simplices_[count[c]++] = s; });
+  for (int s = 0; s < n_simplices; ++s) for_cells(s, [&](std::size_t c) { cell_simplices_[count[c]++] = s; });
 }
 
 std::array<int, 3> PointLocator::cell_of(const Eigen::Vector3d& x) const {

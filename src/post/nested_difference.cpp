@@ -9,64 +9,29 @@
 #include <vector>
 
 #include "contactqp/estimate.hpp"
+#include "mesh/point_locator.hpp"
 #include "mesh/shape_functions.hpp"
 
 namespace contactqp {
 namespace {
 
-// Buckets of the coarse elements' bounding boxes on a uniform grid, for locating points.
-template <int dim>
-class ElementGrid {
- public:
-  explicit ElementGrid(const Mesh& mesh) : mesh_(mesh) {
-    const int n = mesh.n_elements(), npe = mesh.nodes_per_element();
-    lower_ = upper_ = mesh.nodes[0].head<dim>();
-    for (const Eigen::Vector3d& x : mesh.nodes) {
-      lower_ = lower_.cwiseMin(x.head<dim>());
-      upper_ = upper_.cwiseMax(x.head<dim>());
-    }
-    const double cells = std::max(1.0, std::pow(static_cast<double>(n), 1.0 / dim));
-    for (int c = 0; c < dim; ++c) {
-      count_[c] = static_cast<int>(cells);
-      width_[c] = std::max((upper_[c] - lower_[c]) / count_[c], 1e-300);
-    }
-    int total = 1;
-    for (int c = 0; c < dim; ++c) total *= count_[c];
-    buckets_.resize(total);
-    for (int e = 0; e < n; ++e) {
-      Eigen::Matrix<double, dim, 1> lo = mesh.nodes[mesh.element(e)[0]].head<dim>(), hi = lo;
-      for (int i = 1; i < npe; ++i) {
-        lo = lo.cwiseMin(mesh.nodes[mesh.element(e)[i]].head<dim>());
-        hi = hi.cwiseMax(mesh.nodes[mesh.element(e)[i]].head<dim>());
-      }
-      std::array<int, 3> a{}, b{};
-      for (int c = 0; c < dim; ++c) {
-        a[c] = cell(lo[c] - 1e-9 * width_[c], c);
-        b[c] = cell(hi[c] + 1e-9 * width_[c], c);
-      }
-      for (int i = a[0]; i <= b[0]; ++i)
-        for (int j = a[1]; j <= b[1]; ++j)
-          for (int k = (dim == 3 ? a[2] : 0); k <= (dim == 3 ? b[2] : 0); ++k) buckets_[index(i, j, k)].push_back(e);
+// The coarse mesh's cells for locating points: each filed under the box of all its nodes (a
+// quadratic cell's curved sides reach beyond its vertices' box).
+detail::PointLocator cell_locator(const Mesh& mesh) {
+  const int n = mesh.n_elements(), npe = mesh.nodes_per_element(), dim = mesh.dim;
+  std::vector<std::array<int, 4>> simplices(n, std::array<int, 4>{0, 0, 0, 0});
+  std::vector<detail::PointLocator::Box> boxes(n);
+  for (int e = 0; e < n; ++e) {
+    const int* v = mesh.element(e);
+    for (int k = 0; k <= dim; ++k) simplices[e][k] = v[k];
+    boxes[e].low = boxes[e].high = mesh.nodes[v[0]];
+    for (int i = 1; i < npe; ++i) {
+      boxes[e].low = boxes[e].low.cwiseMin(mesh.nodes[v[i]]);
+      boxes[e].high = boxes[e].high.cwiseMax(mesh.nodes[v[i]]);
     }
   }
-  // The elements whose boxes may hold x (the nearest bucket's when x lies outside the grid).
-  const std::vector<int>& near(const Eigen::Matrix<double, dim, 1>& x) const {
-    std::array<int, 3> a{};
-    for (int c = 0; c < dim; ++c) a[c] = cell(x[c], c);
-    return buckets_[index(a[0], a[1], a[2])];
-  }
-
- private:
-  int cell(double x, int c) const {
-    return std::clamp(static_cast<int>(std::floor((x - lower_[c]) / width_[c])), 0, count_[c] - 1);
-  }
-  int index(int i, int j, int k) const { return (k * (dim == 3 ? count_[1] : 1) + j) * count_[0] + i; }
-
-  const Mesh& mesh_;
-  Eigen::Matrix<double, dim, 1> lower_, upper_, width_;
-  std::array<int, 3> count_{{1, 1, 1}};
-  std::vector<std::vector<int>> buckets_;
-};
+  return detail::PointLocator(dim, mesh.nodes, std::move(simplices), boxes);
+}
 
 // The reference point of x in element e by Newton's method on the isoparametric map, and how far
 // it lies outside the reference cell (0 inside).
@@ -95,7 +60,7 @@ double distance(const Model& coarse, const Eigen::VectorXd& u_coarse, const Mode
   const Mesh& mesh = coarse.mesh;
   const Eigen::VectorXd displacement = full_displacement(coarse, u_coarse);
   const Eigen::VectorXd reference = full_displacement(fine, u_fine);
-  const ElementGrid<dim> grid(mesh);
+  const detail::PointLocator locator = cell_locator(mesh);
   const int npe = mesh.nodes_per_element();
   Eigen::VectorXd d = Eigen::VectorXd::Zero(fine_qp.n_dofs());
   for (int node = 0; node < fine.mesh.n_nodes(); ++node) {
@@ -105,16 +70,20 @@ double distance(const Model& coarse, const Eigen::VectorXd& u_coarse, const Mode
     int best = -1;
     double best_outside = std::numeric_limits<double>::infinity();
     Eigen::Matrix<double, dim, 1> xi, best_xi;
-    for (int e : grid.near(x)) {
-      const double outside = locate<dim>(mesh, e, x, xi);
+    const auto [first, last] = locator.near(fine.mesh.nodes[node]);
+    for (const int* e = first; e != last; ++e) {
+      const double outside = locate<dim>(mesh, *e, x, xi);
       if (outside < best_outside) {
         best_outside = outside;
-        best = e;
+        best = *e;
         best_xi = xi;
       }
       if (outside == 0) break;
     }
-    if (best < 0) continue;
+    if (best < 0) {  // no cell's box meets x's grid cell: the cell whose vertices x lies nearest
+      best = locator.locate(fine.mesh.nodes[node]).simplex;
+      locate<dim>(mesh, best, x, best_xi);
+    }
     const Eigen::VectorXd N = detail::cell_values<dim>(mesh.order, best_xi);
     Eigen::Matrix<double, dim, 1> value = Eigen::Matrix<double, dim, 1>::Zero();
     for (int i = 0; i < npe; ++i) value += N[i] * displacement.segment<dim>(dim * mesh.element(best)[i]);

@@ -1,8 +1,10 @@
 // The adaptive run's sizes and warm start (docs/adaptive.md): the size field it hands Gmsh interpolates the
 // planned vertex sizes exactly where the old mesh is (the point locator), and plan_next_mesh() meets its error
 // model's target with the elements it predicts.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <stdexcept>
 
 #include "contactqp/run.hpp"
 #include "contactqp/solve.hpp"
@@ -61,6 +63,25 @@ TEST_CASE("the point locator interpolates a linear field exactly and clamps outs
     const Eigen::Vector3d x(0.2, 0.3, 0.1);
     CHECK(lookup(x) == Approx(f(x)).epsilon(1e-14));
   }
+}
+
+TEST_CASE("the point locator files a cell under its own box: the candidates near a curved side", "[adaptive]") {
+  // Two triangles of the unit square; the right one's box widened to x = 1.2 (a quadratic
+  // cell whose side bulges out there). A point at x = 1.1 lies outside every simplex, inside that
+  // box: the widened cell is among its candidates.
+  const std::vector<Eigen::Vector3d> vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const std::vector<std::array<int, 4>> simplices = {{0, 1, 2, 0}, {0, 2, 3, 0}};
+  const std::vector<PointLocator::Box> boxes = {{{0, 0, 0}, {1.2, 1, 0}}, {{0, 0, 0}, {1, 1, 0}}};
+  const PointLocator curved(2, vertices, simplices, boxes);
+  const auto [first, last] = curved.near(Eigen::Vector3d(1.1, 0.5, 0));
+  REQUIRE(last - first >= 1);
+  CHECK(std::find(first, last, 0) != last);
+  // Inside the square every cell's candidates include the simplex that holds the point.
+  for (const Eigen::Vector3d& x : {Eigen::Vector3d(0.8, 0.1, 0), Eigen::Vector3d(0.1, 0.8, 0)}) {
+    const auto [a, b] = curved.near(x);
+    CHECK(std::find(a, b, curved.locate(x).simplex) != b);
+  }
+  CHECK_THROWS_AS(PointLocator(2, vertices, simplices, {boxes[0]}), std::invalid_argument);
 }
 
 TEST_CASE("the next mesh's plan meets its error model's target with the elements it predicts", "[adaptive]") {
