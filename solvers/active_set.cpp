@@ -14,6 +14,7 @@
 #include "active_set_friction.hpp"
 #include "backend_options.hpp"
 #include "backends.hpp"
+#include "contactqp/backends/active_set.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
 #include "lcp.hpp"
@@ -28,7 +29,7 @@ double dense_bytes(int m) { return 16.0 * m * m; }
 
 // The backend options it reads (keys unaddressed or addressed "active_set.key").
 ActiveSetOptions effective_options(const SolveOptions& options) {
-  ActiveSetOptions settings = options.active_set;
+  ActiveSetOptions settings = options.get<ActiveSetOptions>();
   for (const auto& [key, value] : options_for(Backend::ActiveSet, options.backend_options)) {
     if (key == "max_dense_mb") {
       const double mb = parse_number(value, option_field(key));

@@ -4,6 +4,7 @@
 // with one solve.
 #pragma once
 
+#include "contactqp/backends/active_set.hpp"
 #include "contactqp/qp.hpp"
 
 namespace contactqp::detail {

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "backend_options.hpp"
+#include "contactqp/backends/nlopt.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
 #include "coulomb_fixed_point.hpp"
@@ -70,7 +71,7 @@ std::string name_of(NloptOptions::Algorithm algorithm) {
 
 // The NLopt options with the backend options ("algorithm", "memory") applied.
 NloptOptions effective_options(const SolveOptions& options) {
-  NloptOptions nlopt = options.nlopt;
+  NloptOptions nlopt = options.get<NloptOptions>();
   for (const auto& [key, value] : options_for(Backend::Nlopt, options.backend_options)) {
     const std::string field = option_field(key);
     if (key == "algorithm") {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "contactqp/backends/uzawa.hpp"
 #include "contactqp/linear_solver.hpp"
 #include "qp/norms.hpp"
 
@@ -46,9 +47,10 @@ QuadraticProgram scaled_qp(const QuadraticProgram& qp, const QpScaling& scaling)
 
 SolveOptions scaled_options(const SolveOptions& options, const QpScaling& scaling) {
   SolveOptions scaled = options;
-  if (options.uzawa.rho_rule == UzawaOptions::RhoRule::Absolute)
-    scaled.uzawa.rho = options.uzawa.rho / scaling.stiffness;
-  scaled.uzawa.rho_unit = options.uzawa.rho_unit * scaling.stiffness;
+  UzawaOptions uzawa = options.get<UzawaOptions>();
+  if (uzawa.rho_rule == UzawaOptions::RhoRule::Absolute) uzawa.rho /= scaling.stiffness;
+  uzawa.rho_unit *= scaling.stiffness;
+  scaled.set(uzawa);
   if (options.K_factor) scaled.K_factor = options.K_factor->scaled(1.0 / scaling.stiffness);
   const double force = scaling.stiffness * scaling.displacement;
   scaled.initial.u = options.initial.u / scaling.displacement;

@@ -8,6 +8,8 @@
 #include "backends.hpp"
 #include "cleanup.hpp"
 #include "contactqp/backend.hpp"
+#include "contactqp/backends/active_set.hpp"
+#include "contactqp/backends/uzawa.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/number_format.hpp"
@@ -109,11 +111,11 @@ void check_problem_kind(const BackendRegistration& registration, const Quadratic
 void check_solve_options(const SolveOptions& options) {
   require(options.tol > 0 && options.tol < 1, "tol", options.tol, "must lie in (0, 1)");
   require(options.max_iterations > 0, "max_iterations", options.max_iterations, "must be positive");
-  const UzawaOptions& uzawa = options.uzawa;
+  const UzawaOptions uzawa = options.get<UzawaOptions>();
   if (uzawa.rho_rule != UzawaOptions::RhoRule::Auto)
     require(uzawa.rho > 0 && std::isfinite(uzawa.rho), "rho", uzawa.rho, "must be a positive number");
-  require(options.active_set.max_dense_bytes > 0, "active_set.max_dense_bytes", options.active_set.max_dense_bytes,
-          "must be positive");
+  require(options.get<ActiveSetOptions>().max_dense_bytes > 0, "active_set.max_dense_bytes",
+          options.get<ActiveSetOptions>().max_dense_bytes, "must be positive");
   const std::shared_ptr<const BackendRegistration> registration = backend_registration(options.backend);
   require(registration->available, "backend", to_string(options.backend), "was not built into this copy of contactqp");
   require(linear_solver_available(options.linear_solver), "linear_solver", to_string(options.linear_solver),

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "backend_options.hpp"
+#include "contactqp/backends/uzawa.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/number_format.hpp"
 #include "coulomb_fixed_point.hpp"
@@ -117,7 +118,7 @@ void record_step(const UzawaStep& step, int spectrum_solves, SolveResult& result
 std::string closing_message(const SolveOptions& options, UzawaVariant variant, const UzawaStep& step,
                             const UzawaRun& run, bool fell_back) {
   // The backend sees a scaled QP: quote ρ in the caller's units.
-  const double unit = options.uzawa.rho_unit;
+  const double unit = options.get<UzawaOptions>().rho_unit;
   const bool known = std::isfinite(step.rho_max);
   const std::string rho =
       "ρ = " + short_number(step.rho * unit) + (known ? " (" + short_number(step.rho / step.rho_max) + " ρ_max)" : "");
@@ -247,7 +248,8 @@ SolveResult run_uzawa(const QuadraticProgram& qp, const VectorXd& radii, const S
   const std::vector<int> all_rows = every_row(set);
   if (working.empty()) working = all_rows;
 
-  UzawaStep step = choose_step(set, K_factor, options.uzawa, variant, working);
+  const UzawaOptions uzawa = options.get<UzawaOptions>();
+  UzawaStep step = choose_step(set, K_factor, uzawa, variant, working);
   if (!K_factor.ok()) {
     result.message = "a solve with K failed before the iteration: " + K_factor.message();
     result.u = u_free;
@@ -268,9 +270,9 @@ SolveResult run_uzawa(const QuadraticProgram& qp, const VectorXd& radii, const S
   // converge starts again from its start with the step from every row, which is guaranteed.
   bool fell_back = false;
   const int remaining = options.max_iterations - run.iterations;
-  if (run.status == Status::Diverged && options.uzawa.rho_rule == UzawaOptions::RhoRule::Auto &&
+  if (run.status == Status::Diverged && uzawa.rho_rule == UzawaOptions::RhoRule::Auto &&
       step.spectrum.rows < static_cast<int>(all_rows.empty() ? set.rows() : all_rows.size()) && remaining > 0) {
-    step = choose_step(set, K_factor, options.uzawa, variant, all_rows);
+    step = choose_step(set, K_factor, uzawa, variant, all_rows);
     spectrum_seconds += step.spectrum.seconds;
     spectrum_solves += step.spectrum.applications;
     clock.restart();
@@ -308,8 +310,10 @@ SolveResult solve_uzawa_variant(const QuadraticProgram& qp, const SolveOptions& 
   return solve_coulomb_by_fixed_point(qp, options, [&](const VectorXd& radii, const SolveOptions& step_options) {
     SolveOptions fixed = step_options;
     if (rho > 0) {
-      fixed.uzawa.rho_rule = UzawaOptions::RhoRule::Absolute;
-      fixed.uzawa.rho = rho;
+      UzawaOptions step = fixed.get<UzawaOptions>();
+      step.rho_rule = UzawaOptions::RhoRule::Absolute;
+      step.rho = rho;
+      fixed.set(step);
     }
     SolveResult result = run_uzawa(qp, radii, fixed, variant, loop);
     // Not from a solve whose radii are all 0: that one ran on B's rows alone (multiplier_set.hpp).

@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "contactqp/backends/uzawa.hpp"
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/io.hpp"
@@ -146,8 +147,7 @@ int run(const Settings& settings) {
     for (const Backend backend : {Backend::Uzawa, Backend::UzawaAccelerated}) {
       for (const double fraction : log_spaced(0.01, 2.5, settings.points)) {
         SolveOptions options = options_for(mesh, backend, settings.tol, cap);
-        options.uzawa.rho_rule = UzawaOptions::RhoRule::FractionOfMax;
-        options.uzawa.rho = fraction;
+        options.set(UzawaOptions{UzawaOptions::RhoRule::FractionOfMax, fraction});
         int iterations = 0;
         const std::string row = run_row(mesh, options, &iterations);
         sweep_csv += row;

@@ -15,6 +15,9 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <typeindex>
+#include <typeinfo>
+#include <utility>
 #include <vector>
 
 #include "contactqp/certificate_values.hpp"
@@ -135,35 +138,6 @@ Backend parse_backend(const std::string& name, const std::string& field = "backe
 // Every registered backend, built in or not (backend_available() tells), in listing order.
 std::vector<Backend> all_backends();
 
-struct UzawaOptions {
-  // How the step ρ is chosen. Auto estimates the spectrum of S = B K⁻¹ Bᵀ by Lanczos (one
-  // solve per step) on the rows the unconstrained solution violates, and takes
-  // ρ_opt = 2/(λ_min + λ_max) (uzawa) or 1/λ_max (uzawa_accel); Absolute takes `rho` in the
-  // QP's own units (force per length); FractionOfMax takes `rho` as a fraction of
-  // ρ_max = 2/λ_max(S) on those rows.
-  enum class RhoRule { Auto, Absolute, FractionOfMax };
-  RhoRule rho_rule = RhoRule::Auto;
-  double rho = 0.0;
-  // Set by solve() on its internally scaled copy: the caller's ρ per backend ρ, so that
-  // messages quote ρ in the caller's units. Leave at 1.
-  double rho_unit = 1.0;
-};
-
-struct NloptOptions {
-  // The gradient-based NLopt algorithm that maximises θ(λ) over λ ≥ 0 (backend option
-  // "algorithm": LD_LBFGS, LD_CCSAQ, LD_MMA, LD_SLSQP).
-  enum class Algorithm { Lbfgs, Ccsaq, Mma, Slsqp };
-  Algorithm algorithm = Algorithm::Lbfgs;
-  int memory = 0;  // L-BFGS: correction pairs kept (backend option "memory"); 0 = NLopt's choice
-};
-
-struct ActiveSetOptions {
-  // S = B K⁻¹ Bᵀ (m × m) is formed dense when S and one factorisation of its active block,
-  // 16 m² bytes, fit in this limit (m ≤ 8192 at the default 1 GiB). Above it S is applied
-  // matrix-free, one solve with K per product, and its active blocks are solved by CG.
-  double max_dense_bytes = 1024.0 * 1024.0 * 1024.0;
-};
-
 // A starting point, e.g. the last load step's answer (quasi-static load paths), in the
 // caller's units. Each vector is either empty (no guess) or of its full size: u n, lambda m,
 // lambda_t m · n_directions. Backends that can start from it do (uzawa, uzawa_accel and nlopt
@@ -184,9 +158,22 @@ struct SolveOptions {
   int max_iterations = kDefaultMaxIterations;
   bool verbose = false;  // third-party banners and per-iteration logs stay silent unless set
   bool scale = true;     // solve an internally scaled copy, so E and length units do not matter
-  UzawaOptions uzawa;
-  NloptOptions nlopt;
-  ActiveSetOptions active_set;
+  // Typed options of one backend, each struct declared beside its backend and read by it alone
+  // (contactqp/backends/: UzawaOptions for uzawa and uzawa_accel, NloptOptions, ActiveSetOptions;
+  // a backend of yours reads a struct of its own the same way):
+  //   options.set(UzawaOptions{UzawaOptions::RhoRule::FractionOfMax, 0.5});
+  //   options.get<UzawaOptions>()   // the struct's defaults when none was set
+  // backend_options (below) gives the same settings as text; the text wins where both are given.
+  template <class Options>
+  void set(Options value) {
+    typed_options[std::type_index(typeid(Options))] = std::make_shared<const Options>(std::move(value));
+  }
+  template <class Options>
+  Options get() const {
+    const auto found = typed_options.find(std::type_index(typeid(Options)));
+    return found == typed_options.end() ? Options{} : *static_cast<const Options*>(found->second.get());
+  }
+  std::map<std::type_index, std::shared_ptr<const void>> typed_options;  // set() and get() read it
   // The solver of K the backends use (linear_solver.hpp, docs/linear-solvers.md). Ipopt
   // factorises its own KKT matrix with MUMPS and ignores it; active_set's condensation
   // is fast with CHOLMOD and takes one solve per contact row with another solver.

@@ -27,6 +27,7 @@
 #include <variant>
 #include <vector>
 
+#include "contactqp/backends/uzawa.hpp"
 #include "contactqp/qp.hpp"
 
 namespace contactqp {

@@ -136,7 +136,7 @@ void apply(const SolverArguments& arguments, SolveOptions& options) {
     options.tol = arguments.tol.cast<double>();
     require(options.tol > 0 && options.tol < 1, "tol", options.tol, "must lie in (0, 1)");
   }
-  if (!arguments.rho.is_none()) options.uzawa = to_rho(arguments.rho, "rho");
+  if (!arguments.rho.is_none()) options.set(to_rho(arguments.rho, "rho"));
   if (!arguments.max_iterations.is_none()) {
     if (py::isinstance<py::bool_>(arguments.max_iterations) || !py::isinstance<py::int_>(arguments.max_iterations))
       throw InputError("max_iterations",

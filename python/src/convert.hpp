@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "contactqp/backends/uzawa.hpp"
 #include "contactqp/post.hpp"
 #include "contactqp/qp.hpp"
 

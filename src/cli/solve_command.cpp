@@ -23,7 +23,7 @@ void apply_overrides(const SolveArguments& arguments, SolveOptions& options) {
     require(arguments.tol > 0 && arguments.tol < 1, "--tol", arguments.tol, "must lie in (0, 1)");
     options.tol = arguments.tol;
   }
-  if (!arguments.rho.empty()) options.uzawa = parse_rho(arguments.rho, "--rho");
+  if (!arguments.rho.empty()) options.set(parse_rho(arguments.rho, "--rho"));
   if (arguments.max_iterations_given) {
     require(arguments.max_iterations > 0, "--max-iterations", arguments.max_iterations, "must be positive");
     options.max_iterations = arguments.max_iterations;

@@ -135,11 +135,13 @@ void read_solver(JsonObject solver, SolveOptions& options) {
   if (solver.has("rho")) {
     const json& rho = solver.value("rho");
     if (rho.is_number()) {
-      options.uzawa.rho_rule = UzawaOptions::RhoRule::Absolute;
-      options.uzawa.rho = detail::as_number(rho, solver.path_of("rho"));
-      require(options.uzawa.rho > 0, solver.path_of("rho"), options.uzawa.rho, "must be positive");
+      UzawaOptions uzawa;
+      uzawa.rho_rule = UzawaOptions::RhoRule::Absolute;
+      uzawa.rho = detail::as_number(rho, solver.path_of("rho"));
+      require(uzawa.rho > 0, solver.path_of("rho"), uzawa.rho, "must be positive");
+      options.set(uzawa);
     } else if (rho.is_string()) {
-      options.uzawa = parse_rho(rho.get<std::string>(), solver.path_of("rho"));
+      options.set(parse_rho(rho.get<std::string>(), solver.path_of("rho")));
     } else {
       throw InputError(solver.path_of("rho"),
                        "= " + describe(rho) + ": must be \"auto\", a number, or a fraction of ρ_max such as \"0.5x\"");

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "contactqp/backends/nlopt.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/scene.hpp"
 #include "contactqp/solve.hpp"
@@ -90,7 +91,9 @@ TEST_CASE("NLopt options: algorithm and memory, nothing else", "[input][nlopt]")
   }
   SECTION("the API's NloptOptions, and memory") {
     SolveOptions options = with_option(Backend::Nlopt, "memory", "3");
-    options.nlopt.algorithm = NloptOptions::Algorithm::Ccsaq;
+    CHECK(options.get<NloptOptions>().algorithm == NloptOptions::Algorithm::Lbfgs);  // unset: the defaults
+    options.set(NloptOptions{NloptOptions::Algorithm::Ccsaq});
+    CHECK(SolveOptions(options).get<NloptOptions>().algorithm == NloptOptions::Algorithm::Ccsaq);  // copies carry it
     const SolveResult r = solve(qp, options);
     CHECK(r.status == Status::Converged);
     CHECK(r.message.find("LD_CCSAQ") != std::string::npos);

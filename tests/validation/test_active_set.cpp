@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include "contactqp/backends/active_set.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/cholesky.hpp"
 #include "contactqp/errors.hpp"
@@ -117,7 +118,7 @@ TEST_CASE("over the dense limit, active_set applies S matrix-free and says so", 
   const QuadraticProgram qp = hertz_qp(kCoarse);
   const SolveResult dense = solve(qp, active_set(1e-10));
   SolveOptions options = active_set(1e-10);
-  options.active_set.max_dense_bytes = 1000;  // 16 m² bytes > 1000 for any m > 7
+  options.set(ActiveSetOptions{1000});  // 16 m² bytes > 1000 for any m > 7
   const SolveResult matrix_free = solve(qp, options);
   INFO(matrix_free.message);
   REQUIRE(matrix_free.status == Status::Converged);

@@ -2,6 +2,7 @@
 // and the certificate's numbers on them.
 #include <catch2/catch.hpp>
 
+#include "contactqp/backends/uzawa.hpp"
 #include "contactqp/certificate.hpp"
 #include "contactqp/solve.hpp"
 #include "test_support.hpp"
@@ -75,9 +76,11 @@ TEST_CASE("solve() leaves the QP untouched, and scaling does not change the answ
 TEST_CASE("Uzawa's step: beyond ρ_max it diverges, far below it stops at max_iterations", "[validation][uzawa]") {
   const QuadraticProgram qp = random_qp(6, 5, 7);
   SolveOptions options = options_for(Backend::Uzawa, 1e-10);
-  options.uzawa.rho_rule = UzawaOptions::RhoRule::FractionOfMax;
+  const auto fraction_of_max = [&options](double fraction) {
+    options.set(UzawaOptions{UzawaOptions::RhoRule::FractionOfMax, fraction});
+  };
   SECTION("2.2 ρ_max") {
-    options.uzawa.rho = 2.2;
+    fraction_of_max(2.2);
     const SolveResult r = solve(qp, options);
     CHECK(r.status == Status::Diverged);
     CHECK(r.iterations <= 300);
@@ -86,7 +89,7 @@ TEST_CASE("Uzawa's step: beyond ρ_max it diverges, far below it stops at max_it
     CHECK(r.lambda.allFinite());
   }
   SECTION("1e-6 ρ_max") {
-    options.uzawa.rho = 1e-6;
+    fraction_of_max(1e-6);
     options.max_iterations = 500;
     const SolveResult r = solve(qp, options);
     CHECK(r.status == Status::MaxIterations);
@@ -94,10 +97,9 @@ TEST_CASE("Uzawa's step: beyond ρ_max it diverges, far below it stops at max_it
     CHECK(r.u.allFinite());
   }
   SECTION("an absolute step equal to 0.5 ρ_max gives the same iterates as 0.5x") {
-    options.uzawa.rho = 0.5;
+    fraction_of_max(0.5);
     const SolveResult relative = solve(qp, options);
-    options.uzawa.rho_rule = UzawaOptions::RhoRule::Absolute;
-    options.uzawa.rho = 0.5 * relative.diagnostics.at("rho_max");
+    options.set(UzawaOptions{UzawaOptions::RhoRule::Absolute, 0.5 * relative.diagnostics.at("rho_max")});
     const SolveResult absolute = solve(qp, options);
     CHECK(absolute.iterations == relative.iterations);
     CHECK(relative_difference(absolute.lambda, relative.lambda) < 1e-12);

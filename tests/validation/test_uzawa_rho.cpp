@@ -9,6 +9,7 @@
 #include <optional>
 #include <regex>
 
+#include "contactqp/backends/uzawa.hpp"
 #include "contactqp/cholesky.hpp"
 #include "contactqp/model.hpp"
 #include "contactqp/solve.hpp"
@@ -54,8 +55,7 @@ std::vector<KnownSpectrum> known_spectra() {
 
 SolveOptions rho_options(Backend backend, UzawaOptions::RhoRule rule, double rho, double tol = 1e-10) {
   SolveOptions options = options_for(backend, tol);
-  options.uzawa.rho_rule = rule;
-  options.uzawa.rho = rho;
+  options.set(UzawaOptions{rule, rho});
   return options;
 }
 
@@ -278,8 +278,7 @@ SolveResult solve_with(const HertzQp& hertz, Backend backend, double tol, std::o
   options.max_iterations = 20000;
   options.K_factor = hertz.factor;
   if (fraction) {
-    options.uzawa.rho_rule = UzawaOptions::RhoRule::FractionOfMax;
-    options.uzawa.rho = *fraction;
+    options.set(UzawaOptions{UzawaOptions::RhoRule::FractionOfMax, *fraction});
   }
   return solve(hertz.qp, options);
 }
