@@ -3,7 +3,7 @@
 the internal headers of its own folder and of the folders below it, never of one above. Folders
 on one line are one layer (one library that their files share). solvers/ (the backends) sees
 only qp/. Prints every upward include as FILE:LINE: FOLDER includes HEADER (above it) and exits
-1; nothing and 0 when every arrow points down.
+1 (a folder of src/ missing from the order too); nothing and 0 when every arrow points down.
 
 usage: check_layers.py [REPOSITORY]"""
 import os
@@ -54,6 +54,10 @@ def main(root="."):
                         if level is not None and level > own:
                             upward.append("%s:%d: %s includes %s (above it)" %
                                           (os.path.relpath(path, root), number, folder, line.strip()[9:]))
+    src = os.path.join(root, "src")
+    for folder in sorted(os.listdir(src)) if os.path.isdir(src) else []:
+        if os.path.isdir(os.path.join(src, folder)) and level_of(folder) is None:
+            upward.append("src/%s: a folder that the order in tools/check_layers.py does not place" % folder)
     for line in upward:
         print(line)
     return 1 if upward else 0

@@ -1,9 +1,9 @@
 // Where a point lies in a simplex mesh, and a field given at its vertices evaluated there: what
 // an adaptive run (src/run/adaptive_run.cpp) needs of a body's last mesh, for the size field it
-// hands Gmsh and for the warm start of the next mesh's solve, and the cells near a point that
-// the true error of an estimate interpolates from (post/nested_difference.cpp). Gmsh asks for sizes at points of
-// the new geometry, and the new mesh has nodes, that lie just outside the last mesh (a curved
-// side between its nodes): those take the nearest element's closest point.
+// hands Gmsh and for the warm start of the next mesh's solve; and the cells near a point, which
+// the true error of an estimate interpolates from (post/nested_difference.cpp). Gmsh asks for
+// sizes at points of the new geometry, and the new mesh has nodes, that lie just outside the
+// last mesh (a curved side between its nodes): those take the nearest element's closest point.
 #pragma once
 
 #include <Eigen/Core>

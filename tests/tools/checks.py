@@ -11,8 +11,8 @@ MPI_ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CO
 
 # Open MPI 4.1's mpirun (Debian bookworm: 4.1.4 with PMIx 4.2) now and then dies of SIGPIPE after
 # its ranks have finished and written everything: its PMIx server answers a rank that has
-# already closed its socket (open-mpi/ompi#11322, openpmix/openpmix#1863). One CI run in about
-# forty met it (stop 48: `mpirun -n 2` ended by signal 13, its outputs complete, stderr empty).
+# already closed its socket (open-mpi/ompi#11322, openpmix/openpmix#1863). It has failed one CI
+# run so far (`mpirun -n 2` ended by signal 13, its outputs complete, stderr empty).
 # Two defences, both confined to the launcher: mpirun inherits SIGPIPE ignored (Python's
 # subprocess otherwise restores the default action, which kills the process; ignored, the
 # write fails with EPIPE, which PMIx handles, and Open MPI resets the ranks' handlers itself),
