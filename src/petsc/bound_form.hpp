@@ -6,6 +6,11 @@
 // then row i of B u ≤ g is the bound v_i ≤ g_i on one variable. With u = Q v (Q = T⁻¹ per group,
 // the identity elsewhere) the QP becomes  min ½ vᵀ(QᵀKQ)v − (Qᵀf)ᵀv,  still positive definite,
 // and a rigid-body mode r of K becomes Q⁻¹ r. A node with one row has an orthogonal T.
+//
+// Rows that share DOFs without sharing all of them (a node against another body's face: its
+// own DOFs and the face's, which its neighbours' rows touch too) are not made one dense group:
+// each such row takes new variables on its own DOFs, T = [its part of the row; the complement],
+// the shared DOFs keeping theirs, so that Q stays as sparse as B and QᵀKQ about as sparse as K.
 #pragma once
 
 #include <string>

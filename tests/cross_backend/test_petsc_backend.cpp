@@ -46,10 +46,11 @@ TEST_CASE("petsc agrees with active_set on the shipped scenes, 2D and 3D", "[cro
   // disc-in-vgroove: two obstacles, nodes with a row for each (a per-node change of variables
   // that is not orthogonal); block-on-circle and strip-liftoff: rows that open; hertz-sphere:
   // 3D, six rigid-body modes (coarser, order 1, to keep the test short); hertz-order2: 6-node
-  // triangles, so the P1 level, its start and its truncated hierarchy (0.1 s).
-  const std::string scene =
-      GENERATE(as<std::string>{}, "scenes/hertz.json", "scenes/disc-in-vgroove.json", "scenes/block-on-circle.json",
-               "scenes/strip-liftoff.json", "scenes/hertz-sphere.json", "scenes/hertz-order2.json");
+  // triangles, so the P1 level, its start and its truncated hierarchy (0.1 s); two-cylinders:
+  // rows between two bodies, each node's change of variables on its own DOFs (bound_form.hpp).
+  const std::string scene = GENERATE(
+      as<std::string>{}, "scenes/hertz.json", "scenes/disc-in-vgroove.json", "scenes/block-on-circle.json",
+      "scenes/strip-liftoff.json", "scenes/hertz-sphere.json", "scenes/hertz-order2.json", "scenes/two-cylinders.json");
   const char* patch = scene == "scenes/disc-in-vgroove.json" ? R"({"body": {"mesh": {"contact_size": 0.01}}})"
                       : scene == "scenes/hertz-sphere.json"
                           ? R"({"body": {"mesh": {"contact_size": 0.03, "order": 1}}})"
