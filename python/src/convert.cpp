@@ -41,18 +41,40 @@ VectorXd to_vector(py::handle value, const std::string& field) {
   return vector;
 }
 
+namespace {
+
+// A dense 2-D array's nonzeros (summing nothing: each entry is one position).
+SparseMatrix from_dense(const py::array_t<double>& dense) {
+  const auto d = dense.unchecked<2>();
+  std::vector<Eigen::Triplet<double>> entries;
+  for (py::ssize_t i = 0; i < dense.shape(0); ++i)
+    for (py::ssize_t j = 0; j < dense.shape(1); ++j)
+      if (d(i, j) != 0) entries.emplace_back(static_cast<int>(i), static_cast<int>(j), d(i, j));
+  SparseMatrix matrix(static_cast<Eigen::Index>(dense.shape(0)), static_cast<Eigen::Index>(dense.shape(1)));
+  matrix.setFromTriplets(entries.begin(), entries.end());
+  matrix.makeCompressed();
+  return matrix;
+}
+
+// scipy.sparse if a script has imported it, else None. A scipy matrix cannot exist before its
+// module is imported, and importing it for a numpy array would cost 0.1-0.15 s of start-up.
+py::object scipy_sparse_if_imported() {
+  const py::dict modules = py::module_::import("sys").attr("modules");
+  return modules.contains("scipy.sparse") ? py::object(modules["scipy.sparse"]) : py::object(py::none());
+}
+
+}  // namespace
+
 SparseMatrix to_sparse(py::handle value, const std::string& field) {
   if (value.is_none()) throw InputError(field, "is None: must be a scipy.sparse matrix or a 2-D array");
-  py::module_ sparse = py::module_::import("scipy.sparse");
-  py::object csc;
-  if (py::bool_(sparse.attr("issparse")(value))) {
-    csc = sparse.attr("csc_matrix")(value);
-  } else {
+  const py::object sparse = scipy_sparse_if_imported();
+  if (sparse.is_none() || !py::bool_(sparse.attr("issparse")(value))) {
     const py::array_t<double> dense = float_array(value, field);
     if (dense.ndim() != 2)
       throw InputError(field, "has shape " + shape_text(dense) + ": must be a 2-D matrix (scipy.sparse or numpy)");
-    csc = sparse.attr("csc_matrix")(dense);
+    return from_dense(dense);
   }
+  const py::object csc = sparse.attr("csc_matrix")(value);
   const py::tuple shape = csc.attr("shape");
   const long rows = shape[0].cast<long>(), cols = shape[1].cast<long>();
   const py::array_t<double> data = float_array(csc.attr("data"), field + ".data");
