@@ -21,14 +21,17 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 
+# A 2-DOF QP given as numpy arrays (then scipy is not imported) or as scipy matrices.
 QP_SCRIPT = """
 import sys
 sys.path.insert(0, {python_dir!r})
 import numpy, contactqp
-qp = contactqp.QuadraticProgram(numpy.array([[2.0, -1.0], [-1.0, 2.0]]), numpy.array([1.0, 1.0]),
-                                numpy.array([[1.0, 0.0]]), numpy.array([0.5]))
+{scipy_import}
+K, B = numpy.array([[2.0, -1.0], [-1.0, 2.0]]), numpy.array([[1.0, 0.0]])
+{scipy_convert}
+qp = contactqp.QuadraticProgram(K, numpy.array([1.0, 1.0]), B, numpy.array([0.5]))
 assert contactqp.solve(qp, backend="active_set").converged
-assert "scipy" not in sys.modules  # numpy arrays in: scipy is not imported
+assert ("scipy" in sys.modules) == {with_scipy}
 libraries = set()
 for line in open("/proc/self/maps"):
     path = line.split()[-1]
@@ -89,11 +92,17 @@ def main():
             beyond = "" if unreported is None else f"{unreported:.3f}"
             print(f"| `{name}` | {seconds:.3f} | {beyond} | {program_libraries(command)} |")
         python_dir = os.path.abspath(os.path.join(args.build, "python"))
-        script = [sys.executable, "-c", QP_SCRIPT.format(python_dir=python_dir)]
-        mapped = subprocess.run(script, stdout=subprocess.PIPE, check=True).stdout.decode().strip()
-        seconds, _ = wall(script, args.runs)
-        print(f"| `import numpy, contactqp` and a 2-DOF QP (numpy arrays) by active_set | {seconds:.3f} | | {mapped} "
-              "(mapped, Python's own included) |")
+        for with_scipy in (False, True):
+            text = QP_SCRIPT.format(python_dir=python_dir, with_scipy=with_scipy,
+                                    scipy_import="import scipy.sparse" if with_scipy else "",
+                                    scipy_convert="K, B = scipy.sparse.csc_matrix(K), scipy.sparse.csc_matrix(B)"
+                                    if with_scipy else "")
+            script = [sys.executable, "-c", text]
+            mapped = subprocess.run(script, stdout=subprocess.PIPE, check=True).stdout.decode().strip()
+            seconds, _ = wall(script, args.runs)
+            given = "scipy matrices" if with_scipy else "numpy arrays: no scipy"
+            print(f"| `import contactqp` and a 2-DOF QP ({given}) by active_set | {seconds:.3f} | | {mapped} "
+                  "(mapped, Python's own included) |")
         alone = f"import sys; sys.path.insert(0, {python_dir!r}); import contactqp"
         seconds, _ = wall([sys.executable, "-c", alone], args.runs)
         print(f"| `import contactqp` alone | {seconds:.3f} | | |")
