@@ -7,6 +7,7 @@ rank on Hertz's problem, 2D (scenes/hertz.json refined) and 3D (scenes/hertz-sph
   one solve (CHOLMOD)       contactqp solve --no-contact
   petsc, 1 and 2 ranks      [mpirun -n 2] contactqp solve --backend petsc [--petsc-options BEST]
   one solve (PETSc KSP)     [mpirun -n 2] contactqp solve --no-contact --linear-solver petsc
+  one solve (petsc run)     [mpirun -n 2] contactqp solve --no-contact --backend petsc
 
 each run wrapped in /usr/bin/time (wall seconds, peak resident set per rank). Writes
 OUT/petsc.csv and the level scenes in OUT/scenes.
@@ -84,6 +85,9 @@ def main(build, out, levels):
         ("petsc", "best", 2, ["--backend", "petsc", "--petsc-options=" + BEST]),
         ("one solve", "petsc", 1, ["--no-contact", "--linear-solver", "petsc"]),
         ("one solve", "petsc", 2, ["--no-contact", "--linear-solver", "petsc"]),
+        # The petsc backend's own reference: the same distributed run, KSP and hierarchy, no rows.
+        ("one solve", "petsc backend", 1, ["--backend", "petsc", "--no-contact"]),
+        ("one solve", "petsc backend", 2, ["--backend", "petsc", "--no-contact"]),
     ]
     for level in levels:
         scene = level_scene(level, out)

@@ -4,7 +4,8 @@
 usage: benchmarks/petsc/table.py OUT/petsc.csv
 
 One block of rows per level: active_set and one solve on CHOLMOD, the petsc backend with the
-default and the best options on 1 and 2 ranks, one solve with PETSc's KSP on 1 and 2 ranks."""
+default and the best options on 1 and 2 ranks, one solve with PETSc's KSP (--linear-solver
+petsc) and one by the petsc backend's run (--backend petsc --no-contact) on 1 and 2 ranks."""
 import csv
 import sys
 
@@ -58,6 +59,7 @@ def main(path):
             ("petsc default", runs("petsc", "default", (2,))),
             ("petsc best", runs("petsc", "best", (1, 2))),
             ("one solve (PETSc KSP)", runs("one solve", "petsc", (1, 2))),
+            ("one solve (petsc run)", runs("one solve", "petsc backend", (1, 2))),
         ]
         first = True
         for name, group in lines:
