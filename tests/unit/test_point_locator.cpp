@@ -42,8 +42,8 @@ TEST_CASE("the point locator interpolates a linear field exactly and clamps outs
     for (const auto& v : vertices) size.push_back(f(v));
     const PointLocator locator(2, vertices, {{0, 1, 2, 0}, {0, 2, 3, 0}});
     const auto lookup = [&](const Eigen::Vector3d& x) { return locator.interpolate(x, size); };
-    for (const Eigen::Vector3d x : {Eigen::Vector3d(0.3, 0.2, 0), Eigen::Vector3d(0.9, 0.95, 0),
-                                    Eigen::Vector3d(0.5, 0.5, 0), Eigen::Vector3d(0, 1, 0)})
+    for (const Eigen::Vector3d& x : {Eigen::Vector3d(0.3, 0.2, 0), Eigen::Vector3d(0.9, 0.95, 0),
+                                     Eigen::Vector3d(0.5, 0.5, 0), Eigen::Vector3d(0, 1, 0)})
       CHECK(lookup(x) == Approx(f(x)).epsilon(1e-14));
     // Just outside a side (a curved boundary between old nodes): the side's value.
     CHECK(lookup(Eigen::Vector3d(1 + 1e-3, 0.5, 0)) == Approx(f(Eigen::Vector3d(1, 0.5, 0))).epsilon(1e-3));
