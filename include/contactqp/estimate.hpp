@@ -58,7 +58,9 @@ double strain_energy(const Model& model, const Eigen::VectorXd& u);
 // inverted by Newton's method), d is the difference at the fine model's free DOFs and K =
 // fine_qp.K (at prescribed DOFs both solutions take the scene's values). The true error of the
 // coarse solution, up to the fine one's own (docs/estimate.md). u_coarse and u_fine are the
-// free DOFs of each; the scene may not rotate DOF frames (std::invalid_argument).
+// free DOFs of each; the scene may not rotate DOF frames (std::invalid_argument). With several
+// bodies each fine node is located in its own body's coarse elements (the bodies in the same
+// order in both models).
 double energy_distance(const Model& coarse, const Eigen::VectorXd& u_coarse, const Model& fine,
                        const QuadraticProgram& fine_qp, const Eigen::VectorXd& u_fine);
 

@@ -67,22 +67,30 @@ double distance(const Model& coarse, const Eigen::VectorXd& u_coarse, const Mode
     const Eigen::Matrix<double, dim, 1> x = fine.mesh.nodes[node].head<dim>();
     // The element holding x, or the one it lies least outside of (a fine node on a curved side
     // that the coarse side cuts off).
+    // Only the node's own body's elements: where two bodies touch, a point of one lies on the
+    // other's boundary too, and the two move differently.
+    const int body = fine.body_of_node(node);
     int best = -1;
     double best_outside = std::numeric_limits<double>::infinity();
     Eigen::Matrix<double, dim, 1> xi, best_xi;
-    const auto [first, last] = locator.near(fine.mesh.nodes[node]);
-    for (const int* e = first; e != last; ++e) {
-      const double outside = locate<dim>(mesh, *e, x, xi);
+    const auto consider = [&](int e) {
+      if (body_of_element(coarse, e) != body) return false;
+      const double outside = locate<dim>(mesh, e, x, xi);
       if (outside < best_outside) {
         best_outside = outside;
-        best = *e;
+        best = e;
         best_xi = xi;
       }
-      if (outside == 0) break;
-    }
-    if (best < 0) {  // no cell's box meets x's grid cell: the cell whose vertices x lies nearest
-      best = locator.locate(fine.mesh.nodes[node]).simplex;
-      locate<dim>(mesh, best, x, best_xi);
+      return outside == 0;
+    };
+    const auto [first, last] = locator.near(fine.mesh.nodes[node]);
+    for (const int* e = first; e != last; ++e)
+      if (consider(*e)) break;
+    if (best < 0) {  // no cell of the body meets x's grid cell: the cell whose vertices x lies nearest
+      consider(locator.locate(fine.mesh.nodes[node]).simplex);
+      if (best < 0)  // it was another body's: the body's cell x lies least outside of
+        for (int e = 0; e < mesh.n_elements(); ++e)
+          if (consider(e)) break;
     }
     const Eigen::VectorXd N = detail::cell_values<dim>(mesh.order, best_xi);
     Eigen::Matrix<double, dim, 1> value = Eigen::Matrix<double, dim, 1>::Zero();
