@@ -2,7 +2,7 @@
 // B u is exactly the variable v at bounded[i]; a node's rows against another body's face get a
 // change on that node's DOFs alone, so QᵀKQ stays about as sparse as K; rows that share all
 // their DOFs (a node with two rows) keep their group's dense change; the P1 level's columns
-// carry the same change (hertz-order2, two spheres of 10-node tetrahedra).
+// carry the same change (the two spheres' 10-node tetrahedra).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -102,7 +102,8 @@ TEST_CASE("the bound form of two bodies in contact: exact rows, as sparse as K, 
           "[petsc][bodies]") {
   const std::string scene = GENERATE(as<std::string>{}, "scenes/two-cylinders.json", "scenes/two-spheres.json");
   CAPTURE(scene);
-  // The spheres coarser (the shipped contact zone's 383 rows were one dense group of their DOFs).
+  // Both coarser at the contact, to keep the test short (the shipped spheres' 383 rows were one
+  // dense group of their DOFs before).
   Scene parsed = load_scene(source_path(scene));
   for (SceneBody& body : parsed.bodies) body.body.mesh.contact_size *= 2.5;
   Model model = build_model(parsed);
