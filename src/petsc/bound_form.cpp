@@ -88,7 +88,7 @@ bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, Bou
     // the node's DOFs are its row's alone, the face's are shared by its neighbours' rows) gets
     // a change of variables per row on its own DOFs, the shared ones kept. One dense T over the
     // group would couple every DOF of a contact zone with every other (the two spheres' 383
-    // rows: a dense block of 1500 DOFs, 18 s to form and an A of 174 MiB per rank for 51k DOFs).
+    // rows: one dense block over all their DOFs, 18 s to form and an A of 174 MiB per rank for 51k DOFs).
     if (r > 1) {
       for (int row : rows)
         for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(B_rows, row); it; ++it)
