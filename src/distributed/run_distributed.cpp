@@ -213,13 +213,10 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
       throw InputError(load.path + ".type",
                        "= \"force\": a distributed run (mpirun) does not model a rigid surface "
                        "yet; run it on one process");
-  if (scene.friction_law() != FrictionLaw::None) {
-    const ProblemKind kind = scene.friction_law() == FrictionLaw::Tresca ? ProblemKind::Tresca : ProblemKind::Coulomb;
-    std::string others;
-    for (Backend other : available_backends(kind)) others += (others.empty() ? "" : ", ") + to_string(other);
-    throw InputError("backend", "= \"petsc\": does not solve " + to_string(kind) +
-                                    " problems (it solves frictionless ones); backends that do: " + others);
-  }
+  if (scene.friction_law() != FrictionLaw::None)
+    throw InputError("backend", "= \"petsc\": " + to_string(scene.friction_law()) +
+                                    " friction is not solved on several processes (under mpirun) yet: run the "
+                                    "scene on one process (petsc solves 2D friction there), or with another backend");
   DistributedPdasOptions settings = pdas_options(scene.solver);
   settings.without_bounds = options.no_contact;
   const auto phase = [&options](const char* name) {

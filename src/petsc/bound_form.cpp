@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "qp/friction_sets.hpp"
+
 namespace contactqp::detail {
 namespace {
 
@@ -28,12 +30,31 @@ Eigen::MatrixXd with_complement(const Eigen::MatrixXd& rows) {
 
 bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, BoundForm& form, std::string& message) {
   const int n = qp.n_dofs(), m = qp.n_constraints();
-  // Rows that share a column belong to one group (union-find over B's columns).
-  std::vector<int> parent(m);
+  // The rows that become variables: B's, then with friction T's (row m + i·nd + k is contact
+  // row i's k-th tangential direction). A block is one contact row's rows: its normal row and,
+  // with friction, its tangential rows, which touch the same DOFs.
+  const bool friction = !qp.friction.empty() && !without_friction_force(qp.friction);
+  const int nd = friction ? qp.friction.n_directions : 0;
+  const int M = m * (1 + nd);
+  SparseMatrix C_columns = qp.B;
+  if (friction) {
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int j = 0; j < qp.B.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(qp.B, j); it; ++it)
+        entries.emplace_back(static_cast<int>(it.row()), j, it.value());
+    for (int j = 0; j < qp.friction.T.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(qp.friction.T, j); it; ++it)
+        entries.emplace_back(m + static_cast<int>(it.row()), j, it.value());
+    C_columns.resize(M, n);
+    C_columns.setFromTriplets(entries.begin(), entries.end());
+  }
+  const auto block_of = [m, nd](int row) { return row < m ? row : (row - m) / nd; };
+  // Rows that share a column belong to one group (union-find over C's columns).
+  std::vector<int> parent(M);
   std::iota(parent.begin(), parent.end(), 0);
-  for (int j = 0; j < qp.B.outerSize(); ++j) {
+  for (int j = 0; j < C_columns.outerSize(); ++j) {
     int first = -1;
-    for (SparseMatrix::InnerIterator it(qp.B, j); it; ++it) {
+    for (SparseMatrix::InnerIterator it(C_columns, j); it; ++it) {
       if (it.value() == 0) continue;
       if (first < 0)
         first = find(parent, static_cast<int>(it.row()));
@@ -41,15 +62,22 @@ bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, Bou
         parent[find(parent, static_cast<int>(it.row()))] = first;
     }
   }
-  std::vector<std::vector<int>> rows_of(m), columns_of(m);
-  for (int i = 0; i < m; ++i) rows_of[find(parent, i)].push_back(i);
-  for (int j = 0; j < qp.B.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(qp.B, j); it; ++it)
+  std::vector<std::vector<int>> rows_of(M), columns_of(M);
+  // A tangential row without a free DOF (a node on a symmetry plane, its direction across the
+  // plane prescribed) has no variable: its slip is 0 whatever u, and its λ_T stays 0.
+  std::vector<char> empty_row(M, 1);
+  for (int j = 0; j < C_columns.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(C_columns, j); it; ++it)
+      if (it.value() != 0) empty_row[it.row()] = 0;
+  for (int i = 0; i < M; ++i)
+    if (i < m || !empty_row[i]) rows_of[find(parent, i)].push_back(i);
+  for (int j = 0; j < C_columns.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(C_columns, j); it; ++it)
       if (it.value() != 0) {
         std::vector<int>& columns = columns_of[find(parent, static_cast<int>(it.row()))];
         if (columns.empty() || columns.back() != j) columns.push_back(j);
       }
-  const Eigen::SparseMatrix<double, Eigen::RowMajor> B_rows = qp.B;
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> C_rows = C_columns;
 
   std::vector<Eigen::Triplet<double>> Q, Q_inverse;
   std::vector<char> in_group(n, 0);
@@ -77,65 +105,120 @@ bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, Bou
   BoundQp& problem = form.problem;
   problem.bounded.assign(m, -1);
   problem.upper = qp.g;
-  std::vector<int> rows_at(n, 0);  // how many rows of the group at hand touch each DOF
-  for (int root = 0; root < m; ++root) {
+  problem.n_directions = nd;
+  problem.tangential.assign(static_cast<std::size_t>(m) * nd, -1);
+  // The variable of C's row `row`.
+  const auto variable_of = [&](int row) -> int& {
+    return row < m ? problem.bounded[row] : problem.tangential[row - m];
+  };
+  std::vector<int> blocks_at(n, 0), last_block(n, -1);  // how many blocks of the group at hand touch each DOF
+  for (int root = 0; root < M; ++root) {
     const std::vector<int>& rows = rows_of[root];
     const std::vector<int>& columns = columns_of[root];
     if (rows.empty()) continue;
     const int r = static_cast<int>(rows.size()), c = static_cast<int>(columns.size());
 
-    // A group of several rows each with DOFs of its own (a node against another body's face:
-    // the node's DOFs are its row's alone, the face's are shared by its neighbours' rows) gets
-    // a change of variables per row on its own DOFs, the shared ones kept. One dense T over the
-    // group would couple every DOF of a contact zone with every other (the two spheres' 383
-    // rows: one dense block over all their DOFs, 18 s to form and an A of 174 MiB per rank for 51k DOFs).
-    if (r > 1) {
-      for (int row : rows)
-        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(B_rows, row); it; ++it)
-          if (it.value() != 0) ++rows_at[it.col()];
-      std::vector<std::vector<int>> own(r);
-      bool each_has_own = true;
-      for (int a = 0; a < r && each_has_own; ++a) {
-        double own_norm = 0, norm = 0;
-        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(B_rows, rows[a]); it; ++it) {
-          if (it.value() == 0) continue;
-          norm += it.value() * it.value();
-          if (rows_at[it.col()] == 1) {
-            own[a].push_back(static_cast<int>(it.col()));
-            own_norm += it.value() * it.value();
-          }
-        }
-        // Pivoting on a part of the row much shorter than the row would divide by it.
-        each_has_own = !own[a].empty() && own_norm >= 0.0625 * norm;
+    // A group of several blocks each with DOFs of its own (a node against another body's face:
+    // the node's DOFs are its block's alone, the face's are shared by its neighbours' rows)
+    // gets a change of variables per block on its own DOFs, the shared ones kept. One dense T
+    // over the group would couple every DOF of a contact zone with every other (the two
+    // spheres' 383 rows: one dense block over all their DOFs, 18 s to form and an A of 174 MiB
+    // per rank for 51k DOFs).
+    std::vector<std::vector<int>> blocks;  // the group's rows, block by block (rows ascend within each)
+    {
+      std::vector<int> order = rows;
+      std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return block_of(a) < block_of(b); });
+      for (int row : order) {
+        if (blocks.empty() || block_of(blocks.back().front()) != block_of(row)) blocks.emplace_back();
+        blocks.back().push_back(row);
       }
-      for (int j : columns) rows_at[j] = 0;
-      if (each_has_own) {
-        // Row a is p·u_own + s·u_shared. New variables on its own DOFs, v_own = T u_own + e₁ s·u_shared
-        // with T = [p; an orthonormal basis of p's complement], so v_own[0] is the row; the shared
-        // DOFs keep theirs (v = u there). Then u_own = T⁻¹ (v_own − e₁ s·v_shared).
-        for (int a = 0; a < r; ++a) {
-          std::vector<int> shared;
-          std::vector<double> p, s;
-          for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(B_rows, rows[a]); it; ++it) {
+    }
+    if (blocks.size() > 1) {
+      for (std::size_t b = 0; b < blocks.size(); ++b)
+        for (int row : blocks[b])
+          for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(C_rows, row); it; ++it)
+            if (it.value() != 0 && last_block[it.col()] != static_cast<int>(b)) {
+              last_block[it.col()] = static_cast<int>(b);
+              ++blocks_at[it.col()];
+            }
+      const int n_blocks = static_cast<int>(blocks.size());
+      std::vector<std::vector<int>> own(n_blocks);
+      bool each_has_own = true;
+      for (int b = 0; b < n_blocks && each_has_own; ++b) {
+        for (int row : blocks[b]) {
+          double own_norm = 0, norm = 0;
+          for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(C_rows, row); it; ++it) {
             if (it.value() == 0) continue;
-            const bool is_own = std::binary_search(own[a].begin(), own[a].end(), static_cast<int>(it.col()));
-            if (!is_own) shared.push_back(static_cast<int>(it.col()));
-            (is_own ? p : s).push_back(it.value());
+            norm += it.value() * it.value();
+            if (blocks_at[it.col()] == 1) {
+              own_norm += it.value() * it.value();
+              if (std::find(own[b].begin(), own[b].end(), static_cast<int>(it.col())) == own[b].end())
+                own[b].push_back(static_cast<int>(it.col()));
+            }
           }
-          const int d = static_cast<int>(own[a].size());
-          const Eigen::MatrixXd T = with_complement(Eigen::Map<const Eigen::MatrixXd>(p.data(), 1, d));
-          const Eigen::MatrixXd inverse = T.inverse();  // T's rows are orthogonal: det T = |p|, far from 0
-          std::vector<int> dofs = own[a];
-          dofs.insert(dofs.end(), shared.begin(), shared.end());
+          // Pivoting on a part of the row much shorter than the row would divide by it.
+          each_has_own = each_has_own && own_norm > 0 && own_norm >= 0.0625 * norm;
+        }
+        std::sort(own[b].begin(), own[b].end());
+        each_has_own = each_has_own && own[b].size() >= blocks[b].size();
+      }
+      for (int j : columns) blocks_at[j] = 0, last_block[j] = -1;
+      // Block b's rows are P·u_own + S·u_shared (P: k × d). New variables on its own DOFs,
+      // v_own = T u_own + [S; 0] u_shared with T = [P; an orthonormal basis of P's complement],
+      // so that v_own[a] is the block's row a; the shared DOFs keep theirs (v = u there). Then
+      // u_own = T⁻¹ (v_own − [S; 0] v_shared).
+      struct Change {
+        Eigen::MatrixXd T, inverse, S;
+        std::vector<int> shared;
+      };
+      std::vector<Change> changes(each_has_own ? n_blocks : 0);
+      for (int b = 0; b < static_cast<int>(changes.size()) && each_has_own; ++b) {
+        Change& change = changes[b];
+        const int k = static_cast<int>(blocks[b].size()), d = static_cast<int>(own[b].size());
+        for (int row : blocks[b])
+          for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(C_rows, row); it; ++it)
+            if (it.value() != 0 && !std::binary_search(own[b].begin(), own[b].end(), static_cast<int>(it.col())) &&
+                std::find(change.shared.begin(), change.shared.end(), static_cast<int>(it.col())) ==
+                    change.shared.end())
+              change.shared.push_back(static_cast<int>(it.col()));
+        Eigen::MatrixXd P = Eigen::MatrixXd::Zero(k, d);
+        change.S = Eigen::MatrixXd::Zero(k, static_cast<Eigen::Index>(change.shared.size()));
+        for (int a = 0; a < k; ++a)
+          for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(C_rows, blocks[b][a]); it; ++it) {
+            if (it.value() == 0) continue;
+            const int col = static_cast<int>(it.col());
+            const auto at = std::lower_bound(own[b].begin(), own[b].end(), col);
+            if (at != own[b].end() && *at == col)
+              P(a, at - own[b].begin()) = it.value();
+            else
+              change.S(a, std::find(change.shared.begin(), change.shared.end(), col) - change.shared.begin()) =
+                  it.value();
+          }
+        change.T = with_complement(P);
+        // One row: T's rows are orthogonal, det T = |p|, far from 0. Several (a node's normal
+        // and tangential rows): their own parts must be independent, as the dense path checks.
+        if (k > 1) {
+          const Eigen::FullPivLU<Eigen::MatrixXd> lu(change.T);
+          each_has_own = lu.rank() == d && std::abs(lu.determinant()) >= 1e-8 * change.T.rowwise().norm().prod();
+        }
+        change.inverse = change.T.inverse();
+      }
+      if (each_has_own) {
+        for (int b = 0; b < n_blocks; ++b) {
+          const Change& change = changes[b];
+          const int k = static_cast<int>(blocks[b].size()), d = static_cast<int>(own[b].size());
+          std::vector<int> dofs = own[b];
+          dofs.insert(dofs.end(), change.shared.begin(), change.shared.end());
           const bool coarse_too = on_coarse_level(dofs);
+          const Eigen::MatrixXd shift = -change.inverse.leftCols(k) * change.S;  // d × shared
           for (int x = 0; x < d; ++x) {
-            in_group[own[a][x]] = 1;
-            if (coarse_too) coarse_in_group[column_of_dof[own[a][x]]] = 1;
-            for (int y = 0; y < d; ++y) put(own[a][x], own[a][y], inverse(x, y), T(x, y), coarse_too);
-            for (std::size_t k = 0; k < shared.size(); ++k)
-              put(own[a][x], shared[k], -inverse(x, 0) * s[k], x == 0 ? s[k] : 0.0, coarse_too);
+            in_group[own[b][x]] = 1;
+            if (coarse_too) coarse_in_group[column_of_dof[own[b][x]]] = 1;
+            for (int y = 0; y < d; ++y) put(own[b][x], own[b][y], change.inverse(x, y), change.T(x, y), coarse_too);
+            for (std::size_t s = 0; s < change.shared.size(); ++s)
+              put(own[b][x], change.shared[s], shift(x, s), x < k ? change.S(x, s) : 0.0, coarse_too);
           }
-          problem.bounded[rows[a]] = own[a][0];
+          for (int a = 0; a < k; ++a) variable_of(blocks[b][a]) = own[b][a];
         }
         continue;
       }
@@ -143,7 +226,7 @@ bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, Bou
 
     Eigen::MatrixXd block = Eigen::MatrixXd::Zero(r, c);
     for (int a = 0; a < r; ++a)
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(B_rows, rows[a]); it; ++it) {
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(C_rows, rows[a]); it; ++it) {
         const int b = static_cast<int>(std::lower_bound(columns.begin(), columns.end(), it.col()) - columns.begin());
         block(a, b) = it.value();
       }
@@ -156,7 +239,7 @@ bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, Bou
       message = dependent;
       return false;
     }
-    // T = [rows of B; an orthonormal basis of the complement of their span].
+    // T = [rows of C; an orthonormal basis of the complement of their span].
     const Eigen::MatrixXd T = with_complement(block);
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(T);
     // |det T| ≤ the product of its row lengths (Hadamard), with equality for orthogonal rows:
@@ -172,7 +255,11 @@ bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, Bou
       if (coarse_too) coarse_in_group[column_of_dof[columns[a]]] = 1;
       for (int b = 0; b < c; ++b) put(columns[a], columns[b], inverse(a, b), T(a, b), coarse_too);
     }
-    for (int a = 0; a < r; ++a) problem.bounded[rows[a]] = columns[a];
+    for (int a = 0; a < r; ++a) variable_of(rows[a]) = columns[a];
+  }
+  if (friction) {
+    problem.offset = qp.friction.offset.size() ? qp.friction.offset : Eigen::VectorXd::Zero(problem.tangential.size());
+    problem.radius = qp.friction.law == FrictionLaw::Tresca ? qp.friction.threshold : Eigen::VectorXd::Zero(m);
   }
   for (int j = 0; j < n; ++j)
     if (!in_group[j]) {

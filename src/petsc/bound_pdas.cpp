@@ -21,6 +21,13 @@ namespace {
 // The P1 start stops at this relative KKT residual or when its active set repeats: the fine
 // loop only needs its active set and a good first iterate.
 constexpr double kP1Tolerance = 1e-6;
+// The weight of the slip against the tangential multiplier in the next state's test,
+// z = λ_T + c (v_T − offset) with c = this times A's diagonal there. Any c > 0 has the same
+// fixed points; the path differs. Measured on the shipped 2D frictional scenes at tol 1e-10:
+// 1 and 10 cycle on sliding-block.json, 0.1 cycles on mindlin-on-plane.json, 0.01 converges on
+// all three (mindlin-on-plane, mindlin-cylinders, sliding-block) to active_set's answer. A small
+// c trusts the multiplier, which the step's solve computes, over a slip it has just fixed to 0.
+constexpr double kTangentialWeight = 0.01;
 // The energy solve's delay d: θ − rᵀx_k, the error left in rᵀx_k, is estimated by
 // rᵀx_{k+d} − rᵀx_k (Strakoš and Tichý's lower bound on CG's A-norm error, which is sharp
 // once the convergence is steady; with a multigrid preconditioner each iteration gains about
@@ -158,21 +165,6 @@ class KeptSolverOfA final : public SolverOfA {
   std::shared_ptr<FineState> state_;
 };
 
-// Σ over the active bounds of a mixed hash of their global rows: the same whatever the ranks,
-// so that every rank remembers the same sets.
-std::uint64_t fingerprint(const std::vector<char>& active, const std::vector<PetscInt>& bounded, MPI_Comm comm) {
-  std::uint64_t sum = 0;
-  for (std::size_t i = 0; i < active.size(); ++i)
-    if (active[i]) {
-      std::uint64_t h = static_cast<std::uint64_t>(bounded[i]) + 0x9e3779b97f4a7c15ULL;
-      h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ULL;
-      h = (h ^ (h >> 27)) * 0x94d049bb133111ebULL;
-      sum += h ^ (h >> 31);
-    }
-  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_UINT64_T, MPI_SUM, comm);
-  return sum;
-}
-
 long long count_over_ranks(long long n, MPI_Comm comm) {
   MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPI_LONG_LONG, MPI_SUM, comm);
   return n;
@@ -184,7 +176,58 @@ struct LevelProblem {
   Vec b = nullptr;
   std::vector<PetscInt> bounded;  // global rows, this rank's, increasing
   std::vector<double> upper;
+  // Tresca friction (PetscBoundQp's fields), or n_directions 0.
+  int n_directions = 0;
+  std::vector<PetscInt> tangential;
+  std::vector<double> offset, radius;
 };
+
+// The state of a contact row's tangential variables in the loop (Hüeber, Stadler & Wohlmuth's
+// semismooth Newton method for Tresca's law, on the primal variables): sticking, they are fixed
+// at the offset (no slip) and λ_T = b − A v there; slipping, they are free and λ_T = r n is a
+// given force along the direction n. The next state, from z = λ_T + c (v_T − offset) with c
+// kTangentialWeight times A's diagonal: stick where ‖z‖ ≤ r, else slip along n = z/‖z‖. In 2D (one direction) that is
+// the primal-dual active-set method for the interval [−r, r]. 2D only (the backend registers one
+// tangential direction, petsc_backend.cpp): in 3D a disc's slip direction would have to follow
+// the steps. Kept fixed per step and updated between steps, it converged linearly and slowly
+// (879 steps on a coarse mindlin-spheres.json, stalling at 1.1e-10), so a Newton step on the
+// direction (a symmetric term (r/‖z‖)(I − nnᵀ) at each slipping node, in W) is what 3D needs.
+struct TangentialStates {
+  std::vector<char> stick;        // per contact row
+  std::vector<double> direction;  // per tangential variable: n where slipping
+  std::vector<double> lambda_t;   // per tangential variable
+};
+
+// A 64-bit hash of one integer (splitmix64's finaliser).
+std::uint64_t mixed(std::uint64_t h) {
+  h += 0x9e3779b97f4a7c15ULL;
+  h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  h = (h ^ (h >> 27)) * 0x94d049bb133111ebULL;
+  return h ^ (h >> 31);
+}
+
+// Σ over the active bounds of a mixed hash of their global rows: the same whatever the ranks,
+// so that every rank remembers the same sets. With friction each contact row's tangential state
+// joins it: stick, or slip (in 2D with its sign), keyed by its first tangential variable.
+std::uint64_t fingerprint(const std::vector<char>& active, const std::vector<PetscInt>& bounded, MPI_Comm comm,
+                          const LevelProblem* friction = nullptr, const TangentialStates* states = nullptr) {
+  std::uint64_t sum = 0;
+  for (std::size_t i = 0; i < active.size(); ++i)
+    if (active[i]) sum += mixed(static_cast<std::uint64_t>(bounded[i]));
+  if (friction && states)
+    for (std::size_t j = 0; j < states->stick.size(); ++j) {
+      std::size_t t = j * friction->n_directions;
+      // Keyed by its first direction with a variable.
+      while (t + 1 < (j + 1) * friction->n_directions && friction->tangential[t] < 0) ++t;
+      const std::uint64_t code = states->stick[j]             ? 1
+                                 : friction->n_directions > 1 ? 2
+                                 : states->direction[t] > 0   ? 3
+                                                              : 4;
+      sum += mixed((static_cast<std::uint64_t>(friction->tangential[t]) << 3) + code + (1ULL << 62));
+    }
+  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_UINT64_T, MPI_SUM, comm);
+  return sum;
+}
 
 struct LoopSettings {
   double tol = 1e-8;
@@ -193,6 +236,7 @@ struct LoopSettings {
   double loose_reduction = kLooseReduction;
   bool final_steps = true;  // false (the P1 start): stop at tol or a repeated set, no final-rule step
   std::function<double(Vec v, const std::vector<double>& mu)> residual;
+  std::function<double(Vec v, const std::vector<double>& mu, const std::vector<double>& lambda_t)> friction_residual;
 };
 
 struct LoopOutcome {
@@ -203,42 +247,71 @@ struct LoopOutcome {
   double residual = 0;
 };
 
-// The primal-dual active-set loop on one level, from x and `active`; μ out.
+// The primal-dual active-set loop on one level, from x and `active` (and with friction the
+// tangential `states`); μ (and λ_T in `states`) out.
 PetscErrorCode active_set_loop(const LevelProblem& level, LevelSolver& solver, TruncatedHierarchy* truncation,
                                const LoopSettings& settings, Vec x, std::vector<char>& active, std::vector<double>& mu,
-                               LoopOutcome* outcome) {
+                               LoopOutcome* outcome, TangentialStates* states = nullptr) {
   PetscFunctionBeginUser;
   const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(level.A));
   PetscInt first = 0;
   PetscCall(MatGetOwnershipRange(level.A, &first, nullptr));
   const std::size_t m = level.bounded.size();
-  std::vector<double> diagonal(m);
+  const int nd = states ? level.n_directions : 0;
+  const std::size_t n_tangential = nd ? level.tangential.size() : 0, n_rows = nd ? n_tangential / nd : 0;
+  std::vector<double> diagonal(m), tangential_diagonal(n_tangential);
   {
     const PetscScalar* d = nullptr;
     PetscCall(VecGetArrayRead(solver.mask.diagonal(), &d));
     for (std::size_t i = 0; i < m; ++i) diagonal[i] = d[level.bounded[i] - first];
+    for (std::size_t t = 0; t < n_tangential; ++t)
+      if (level.tangential[t] >= 0) tangential_diagonal[t] = d[level.tangential[t] - first];
     PetscCall(VecRestoreArrayRead(solver.mask.diagonal(), &d));
   }
   PetscReal b_norm = 0;
   PetscCall(VecNorm(level.b, NORM_INFINITY, &b_norm));
-  Vec rhs = nullptr, Ax = nullptr;
+  Vec rhs = nullptr, Ax = nullptr, b_step = nullptr;
   PetscCall(VecDuplicate(level.b, &rhs));
   PetscCall(VecDuplicate(level.b, &Ax));
+  if (nd) PetscCall(VecDuplicate(level.b, &b_step));
   mu.assign(m, 0.0);
   std::set<std::uint64_t> seen;
   bool tight = !settings.inexact;
+  const LevelProblem* friction = nd ? &level : nullptr;
   for (int k = 1;; ++k) {
-    seen.insert(fingerprint(active, level.bounded, comm));
+    seen.insert(fingerprint(active, level.bounded, comm, friction, states));
+    std::vector<std::pair<PetscInt, double>> fixed_values;
+    for (std::size_t i = 0; i < m; ++i)
+      if (active[i]) fixed_values.emplace_back(level.bounded[i] - first, level.upper[i]);
+    for (std::size_t j = 0; j < n_rows; ++j)
+      if (states->stick[j])
+        for (int d = 0; d < nd; ++d)
+          if (level.tangential[j * nd + d] >= 0)
+            fixed_values.emplace_back(level.tangential[j * nd + d] - first, level.offset[j * nd + d]);
+    std::sort(fixed_values.begin(), fixed_values.end());
     std::vector<PetscInt> fixed;
     std::vector<double> values;
-    for (std::size_t i = 0; i < m; ++i)
-      if (active[i]) {
-        fixed.push_back(level.bounded[i] - first);
-        values.push_back(level.upper[i]);
-      }
+    for (const auto& [row, value] : fixed_values) {
+      fixed.push_back(row);
+      values.push_back(value);
+    }
     if (truncation) PetscCall(truncation->fix_rows(fixed));
     solver.mask.fix(fixed);
-    PetscCall(solver.mask.system(level.b, values, x, rhs));
+    // The slipping rows' friction force, −r n, joins b.
+    Vec b = level.b;
+    if (nd) {
+      PetscCall(VecCopy(level.b, b_step));
+      PetscScalar* bs = nullptr;
+      PetscCall(VecGetArray(b_step, &bs));
+      for (std::size_t j = 0; j < n_rows; ++j)
+        if (!states->stick[j])
+          for (int d = 0; d < nd; ++d)
+            if (level.tangential[j * nd + d] >= 0)
+              bs[level.tangential[j * nd + d] - first] -= level.radius[j] * states->direction[j * nd + d];
+      PetscCall(VecRestoreArray(b_step, &bs));
+      b = b_step;
+    }
+    PetscCall(solver.mask.system(b, values, x, rhs));
     double force = b_norm;
     for (double value : mu) force = std::max(force, std::abs(value));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &force, 1, MPI_DOUBLE, MPI_MAX, comm));
@@ -257,21 +330,44 @@ PetscErrorCode active_set_loop(const LevelProblem& level, LevelSolver& solver, T
     // μ = b − A x on the active bounds (the force that holds them), 0 on the others.
     PetscCall(MatMult(level.A, x, Ax));
     std::vector<char> next(m, 0);
+    TangentialStates next_states;
     {
-      const PetscScalar *b = nullptr, *ax = nullptr, *xs = nullptr;
-      PetscCall(VecGetArrayRead(level.b, &b));
+      const PetscScalar *bv = nullptr, *ax = nullptr, *xs = nullptr;
+      PetscCall(VecGetArrayRead(level.b, &bv));
       PetscCall(VecGetArrayRead(Ax, &ax));
       PetscCall(VecGetArrayRead(x, &xs));
       bool finite = true;
       for (std::size_t i = 0; i < m; ++i) {
         const PetscInt r = level.bounded[i] - first;
-        mu[i] = active[i] ? b[r] - ax[r] : 0.0;
+        mu[i] = active[i] ? bv[r] - ax[r] : 0.0;
         next[i] = mu[i] + diagonal[i] * (xs[r] - level.upper[i]) > 0;
         finite = finite && std::isfinite(mu[i]) && std::isfinite(xs[r]);
       }
+      if (nd) {
+        // λ_T = b − A x where the row sticks, r n where it slips; then the next state from z.
+        next_states.stick.assign(n_rows, 0);
+        next_states.direction.assign(n_tangential, 0.0);
+        states->lambda_t.assign(n_tangential, 0.0);
+        for (std::size_t j = 0; j < n_rows; ++j) {
+          double z[3] = {0, 0, 0}, norm = 0;
+          for (int d = 0; d < nd; ++d) {
+            const std::size_t t = j * nd + d;
+            if (level.tangential[t] < 0) continue;  // no free DOF: slip 0, λ_T 0
+            const PetscInt r = level.tangential[t] - first;
+            states->lambda_t[t] = states->stick[j] ? bv[r] - ax[r] : level.radius[j] * states->direction[t];
+            z[d] = states->lambda_t[t] + kTangentialWeight * tangential_diagonal[t] * (xs[r] - level.offset[t]);
+            norm += z[d] * z[d];
+            finite = finite && std::isfinite(states->lambda_t[t]) && std::isfinite(xs[r]);
+          }
+          norm = std::sqrt(norm);
+          next_states.stick[j] = level.radius[j] > 0 && norm <= level.radius[j];
+          if (!next_states.stick[j] && norm > 0)
+            for (int d = 0; d < nd; ++d) next_states.direction[j * nd + d] = z[d] / norm;
+        }
+      }
       PetscCall(VecRestoreArrayRead(x, &xs));
       PetscCall(VecRestoreArrayRead(Ax, &ax));
-      PetscCall(VecRestoreArrayRead(level.b, &b));
+      PetscCall(VecRestoreArrayRead(level.b, &bv));
       int all_finite = finite ? 1 : 0;
       PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &all_finite, 1, MPI_INT, MPI_MIN, comm));
       if (!all_finite) {
@@ -280,11 +376,14 @@ PetscErrorCode active_set_loop(const LevelProblem& level, LevelSolver& solver, T
         break;
       }
     }
-    outcome->residual = settings.residual(x, mu);
+    outcome->residual = nd ? settings.friction_residual(x, mu, states->lambda_t) : settings.residual(x, mu);
     long long changes = 0;
     for (std::size_t i = 0; i < m; ++i) changes += next[i] != active[i];
+    for (std::size_t j = 0; j < n_rows; ++j)
+      changes += next_states.stick[j] != states->stick[j] ||
+                 (!next_states.stick[j] && next_states.direction[j * nd] * states->direction[j * nd] <= 0);
     const bool settled = count_over_ranks(changes, comm) == 0;
-    const bool repeats = !settled && seen.count(fingerprint(next, level.bounded, comm)) > 0;
+    const bool repeats = !settled && seen.count(fingerprint(next, level.bounded, comm, friction, &next_states)) > 0;
     if (!settings.final_steps && (outcome->residual <= settings.tol || settled || repeats)) {
       outcome->status = Status::Converged;
       active = next;
@@ -314,8 +413,9 @@ PetscErrorCode active_set_loop(const LevelProblem& level, LevelSolver& solver, T
     }
     if (repeats) {
       outcome->status = Status::NumericalError;
-      outcome->message = "the active-set steps cycled at residual " + number_text(outcome->residual) +
-                         " (try --backend-option method=tao)";
+      outcome->message =
+          "the active-set steps cycled at residual " + number_text(outcome->residual) +
+          (nd ? std::string(" (friction: try --backend active_set)") : " (try --backend-option method=tao)");
       break;
     }
     if (k >= settings.max_iterations) {
@@ -325,9 +425,14 @@ PetscErrorCode active_set_loop(const LevelProblem& level, LevelSolver& solver, T
       break;
     }
     active = std::move(next);
+    if (nd) {
+      states->stick = std::move(next_states.stick);
+      states->direction = std::move(next_states.direction);
+    }
   }
   PetscCall(VecDestroy(&rhs));
   PetscCall(VecDestroy(&Ax));
+  if (b_step) PetscCall(VecDestroy(&b_step));
   PetscFunctionReturn(0);
 }
 
@@ -436,6 +541,9 @@ BoundPdasResult& BoundPdasResult::operator=(BoundPdasResult&& other) noexcept {
   v = other.v;
   other.v = nullptr;
   mu = std::move(other.mu);
+  lambda_t = std::move(other.lambda_t);
+  stick = other.stick;
+  slip = other.slip;
   iterations = other.iterations;
   krylov_iterations = other.krylov_iterations;
   linear_solves = other.linear_solves;
@@ -545,9 +653,14 @@ PetscErrorCode solve_bound_pdas(const PetscBoundQp& qp, const BoundPdasOptions& 
   if (warm) {
     PetscCall(VecCopy(start->v, result->v));
     active = start->active_bounds;
+  } else if (qp.start_active.size() == qp.bounded.size() && !qp.start_active.empty()) {
+    PetscCall(VecSet(result->v, 0.0));
+    active = qp.start_active;
   } else {
     PetscCall(VecSet(result->v, 0.0));
-    if (options.p1_start && qp.coarse_interpolation && qp.coarse_bounded.size() == qp.bounded.size())
+    // The P1 start knows the bounds only: with friction the fine loop starts from zero.
+    if (options.p1_start && qp.n_directions == 0 && qp.coarse_interpolation &&
+        qp.coarse_bounded.size() == qp.bounded.size())
       PetscCall(p1_start(qp, *fine, options, result->v, active, result));
   }
 
@@ -556,15 +669,40 @@ PetscErrorCode solve_bound_pdas(const PetscBoundQp& qp, const BoundPdasOptions& 
   level.b = qp.b;
   level.bounded = qp.bounded;
   level.upper = qp.upper;
+  level.n_directions = qp.n_directions;
+  level.tangential = qp.tangential;
+  level.offset = qp.offset;
+  level.radius = qp.radius;
+  // Every contact row starts sticking where it has a friction force (r > 0), else slipping
+  // freely (λ_T = 0): the frictionless problem's first step.
+  TangentialStates states;
+  const bool friction = qp.n_directions > 0;
+  if (friction) {
+    states.stick.resize(qp.radius.size());
+    for (std::size_t j = 0; j < qp.radius.size(); ++j) states.stick[j] = qp.radius[j] > 0;
+    states.direction.assign(qp.tangential.size(), 0.0);
+    if (qp.start_stick.size() == qp.radius.size() && qp.start_direction.size() == qp.tangential.size()) {
+      states.stick = qp.start_stick;
+      states.direction = qp.start_direction;
+    }
+  }
   LoopSettings settings;
   settings.tol = options.tol;
   settings.max_iterations = options.max_iterations;
   settings.inexact = options.inexact;
   settings.loose_reduction = options.loose_reduction;
   settings.residual = options.residual;
+  settings.friction_residual = options.friction_residual;
   LoopOutcome outcome;
   PetscCall(active_set_loop(level, fine->level, fine->truncation.active() ? &fine->truncation : nullptr, settings,
-                            result->v, active, result->mu, &outcome));
+                            result->v, active, result->mu, &outcome, friction ? &states : nullptr));
+  if (friction) {
+    result->lambda_t = std::move(states.lambda_t);
+    result->stick = count_over_ranks(std::count(states.stick.begin(), states.stick.end(), 1), comm);
+    long long slipping = 0;
+    for (std::size_t j = 0; j < states.stick.size(); ++j) slipping += !states.stick[j] && qp.radius[j] > 0;
+    result->slip = count_over_ranks(slipping, comm);
+  }
   for (double& value : result->mu) value = std::max(value, 0.0);
   result->status = outcome.status;
   result->message = outcome.message;

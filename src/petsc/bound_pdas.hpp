@@ -40,6 +40,18 @@ struct PetscBoundQp {
   Mat coarse_interpolation = nullptr;
   MatNullSpace coarse_modes = nullptr;
   std::vector<PetscInt> coarse_bounded;
+  // Tresca friction (petsc_bound_qp.hpp's BoundQp), this rank's contact rows with friction:
+  // their tangential variables (global rows in this rank's range, n_directions per contact row,
+  // consecutive; −1 for a direction without a free DOF, whose λ_T stays 0), offsets and radii.
+  // n_directions 0: frictionless.
+  int n_directions = 0;
+  std::vector<PetscInt> tangential;
+  std::vector<double> offset;  // one per entry of `tangential`
+  std::vector<double> radius;  // one per contact row: tangential.size() / n_directions
+  // The states the loop starts from (a warm start), or empty: 1 per active bound; per contact
+  // row with friction 1 where it sticks, and the sign of its slip (one per tangential variable).
+  std::vector<char> start_active, start_stick;
+  std::vector<double> start_direction;
 };
 
 // A loose step's CG reduces its own initial residual by this factor (never below the final
@@ -59,6 +71,9 @@ struct BoundPdasOptions {
   // rank's rows and bounds); collective, the global value. The loop ends when it is ≤ tol after
   // a step solved at the final rule.
   std::function<double(Vec v, const std::vector<double>& mu)> residual;
+  // With friction (PetscBoundQp::n_directions > 0): the same with this rank's tangential
+  // multipliers λ_T (one per entry of PetscBoundQp::tangential), in place of `residual`.
+  std::function<double(Vec v, const std::vector<double>& mu, const std::vector<double>& lambda_t)> friction_residual;
 };
 
 // Solves with A after the loop: its KSP and hierarchy, A as operator (no fixed rows), to the
@@ -80,9 +95,11 @@ class SolverOfA {
 struct BoundPdasResult {
   Status status = Status::NumericalError;
   std::string message;
-  Vec v = nullptr;         // A's layout; the result owns it
-  std::vector<double> mu;  // one per bound of this rank, ≥ 0
-  int iterations = 0;      // fine active-set steps
+  Vec v = nullptr;                // A's layout; the result owns it
+  std::vector<double> mu;         // one per bound of this rank, ≥ 0
+  std::vector<double> lambda_t;   // with friction: one per entry of PetscBoundQp::tangential
+  long long stick = 0, slip = 0;  // with friction: contact rows sticking and slipping at the end, all ranks
+  int iterations = 0;             // fine active-set steps
   long long krylov_iterations = 0, linear_solves = 0;
   int p1_steps = 0;  // active-set steps of the P1 start (0: none)
   long long p1_krylov_iterations = 0;

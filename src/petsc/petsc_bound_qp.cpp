@@ -422,9 +422,45 @@ void solve_kept(Work& work, const BoundQp& problem, const BoundQpOptions& option
     if (row >= work.first && row < work.end) mine.emplace_back(row, i);
   }
   std::sort(mine.begin(), mine.end());
+  const bool warm = problem.start_lambda.size() == m;
   for (const auto& [row, i] : mine) {
     qp.bounded.push_back(row);
     qp.upper.push_back(problem.upper[i]);
+    if (warm) qp.start_active.push_back(problem.start_lambda[i] > 0);
+  }
+  // Friction: this rank's contact rows, those whose first tangential variable it owns (a row's
+  // variables are its node's DOFs, or one group's, which a rank holds together).
+  const int nd = problem.n_directions;
+  std::vector<int> mine_friction;  // contact rows, by their first tangential variable's row
+  if (nd > 0) {
+    std::vector<std::pair<PetscInt, int>> rows;
+    for (int i = 0; i < m; ++i) {
+      int variable = -1;  // its first direction with a variable (none: λ_T = 0, nothing to solve)
+      for (int d = 0; d < nd && variable < 0; ++d) variable = problem.tangential[static_cast<std::size_t>(i) * nd + d];
+      if (variable < 0) continue;
+      const PetscInt row = work.order.row(variable);
+      if (row >= work.first && row < work.end) rows.emplace_back(row, i);
+    }
+    std::sort(rows.begin(), rows.end());
+    qp.n_directions = nd;
+    for (const auto& [row, i] : rows) {
+      mine_friction.push_back(i);
+      for (int d = 0; d < nd; ++d) {
+        const int variable = problem.tangential[static_cast<std::size_t>(i) * nd + d];
+        const PetscInt own = variable < 0 ? -1 : work.order.row(variable);
+        if (variable >= 0 && (own < work.first || own >= work.end))
+          throw PetscFailure{"a contact row's tangential variables are on two ranks; run friction on one process"};
+        qp.tangential.push_back(own);
+        qp.offset.push_back(problem.offset[i * nd + d]);
+      }
+      qp.radius.push_back(problem.radius[i]);
+      if (problem.start_lambda_t.size() == static_cast<Eigen::Index>(m) * nd) {
+        const Eigen::VectorXd t = problem.start_lambda_t.segment(static_cast<Eigen::Index>(i) * nd, nd);
+        const double norm = t.norm();
+        qp.start_stick.push_back(problem.radius[i] > 0 && norm < problem.radius[i]);
+        for (int d = 0; d < nd; ++d) qp.start_direction.push_back(norm > 0 ? t[d] / norm : 0.0);
+      }
+    }
   }
   CoarseLevel coarse;
   if (problem.coarse_interpolation.cols() > 0) {
@@ -447,6 +483,15 @@ void solve_kept(Work& work, const BoundQp& problem, const BoundQpOptions& option
     MPI_Allreduce(MPI_IN_PLACE, mu.data(), m, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
     return mu;
   };
+  // λ_T of this rank's contact rows into the whole λ_T, on every rank.
+  auto whole_lambda_t = [&](const std::vector<double>& mine_t) {
+    Eigen::VectorXd lambda_t = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m) * nd);
+    for (std::size_t k = 0; k < mine_friction.size(); ++k)
+      for (int d = 0; d < nd; ++d) lambda_t[mine_friction[k] * nd + d] = mine_t[k * nd + d];
+    MPI_Allreduce(MPI_IN_PLACE, lambda_t.data(), static_cast<int>(lambda_t.size()), MPI_DOUBLE, MPI_SUM,
+                  PETSC_COMM_WORLD);
+    return lambda_t;
+  };
   BoundPdasOptions settings;
   settings.tol = options.tol;
   settings.max_iterations = options.max_iterations;
@@ -459,6 +504,12 @@ void solve_kept(Work& work, const BoundQp& problem, const BoundQpOptions& option
     if (options.observer) options.observer(++step, whole, mu.cwiseMax(0.0));
     return options.residual(whole, mu);
   };
+  if (nd > 0)
+    settings.friction_residual = [&](Vec v, const std::vector<double>& mu_mine, const std::vector<double>& t_mine) {
+      const Eigen::VectorXd whole = work.gather(v), mu = whole_mu(mu_mine);
+      if (options.observer) options.observer(++step, whole, mu.cwiseMax(0.0));
+      return options.friction_residual(whole, mu, whole_lambda_t(t_mine));
+    };
   BoundPdasResult solved;
   bool options_error = false;
   if (PetscErrorCode code = solve_bound_pdas(qp, settings, &solved, &options_error)) {
@@ -469,6 +520,11 @@ void solve_kept(Work& work, const BoundQp& problem, const BoundQpOptions& option
   result.message = solved.message;
   result.v = work.gather(solved.v);
   result.mu = whole_mu(solved.mu).cwiseMax(0.0);
+  if (nd > 0) {
+    result.lambda_t = whole_lambda_t(solved.lambda_t);
+    result.stick = solved.stick;
+    result.slip = solved.slip;
+  }
   result.iterations = solved.iterations;
   result.krylov_iterations = solved.krylov_iterations;
   result.linear_solves = solved.linear_solves;
@@ -597,6 +653,8 @@ BoundQpResult solve_bound_qp_petsc(BoundQp problem, const BoundQpOptions& option
     if (!failed_anywhere()) {
       clock.restart();
       try {
+        if (problem.n_directions > 0 && !(options.method == "pdas" && options.kept_hierarchy))
+          throw PetscFailure{"friction is solved by method=pdas with hierarchy=kept (the defaults) only"};
         if (options.method == "pdas" && options.kept_hierarchy)
           solve_kept(work, problem, options, result);
         else if (options.method == "pdas")

@@ -35,6 +35,17 @@ struct BoundQp {
   Eigen::MatrixXd coarse_near_null_space;
   std::vector<int> coarse_vertex, coarse_row, coarse_bounded;
   int coarse_block_size = 1;
+  // Tresca friction (friction.hpp) in these variables, else n_directions 0 and the rest empty:
+  // the term Σ_i radius_i ‖v_T,i − offset_i‖ joins the energy, v_T,i being the variables
+  // tangential[i·n_directions + k] of contact row i (its tangential rows of T). Only the kept
+  // hierarchy's pdas solves it (bound_pdas.hpp).
+  int n_directions = 0;
+  std::vector<int> tangential;  // m · n_directions; −1 for a row of T without a free DOF
+  Eigen::VectorXd offset;       // m · n_directions: T u_prev
+  Eigen::VectorXd radius;       // m: the discs' radii ≥ 0
+  // A warm start (SolveOptions::initial), or empty: the multipliers whose states the loop starts
+  // from (a bound active where λ_N > 0; a row sticking where ‖λ_T‖ < r, else slipping along λ_T).
+  Eigen::VectorXd start_lambda, start_lambda_t;
 };
 
 struct BoundQpOptions {
@@ -65,13 +76,19 @@ struct BoundQpOptions {
   // the loop stops when it is ≤ tol. Stationarity holds to the inner tolerance by construction.
   std::function<double(const Eigen::VectorXd& v, const Eigen::VectorXd& mu)> residual;
   std::function<void(int k, const Eigen::VectorXd& v, const Eigen::VectorXd& mu)> observer;  // may be empty
+  // With friction: the residual of v, μ and the tangential multipliers λ_T (m · n_directions),
+  // in place of `residual`.
+  std::function<double(const Eigen::VectorXd& v, const Eigen::VectorXd& mu, const Eigen::VectorXd& lambda_t)>
+      friction_residual;
 };
 
 struct BoundQpResult {
   Status status = Status::NumericalError;
   std::string message;
-  Eigen::VectorXd v, mu;  // on every rank; μ has one entry per bounded component, ≥ 0
-  int iterations = 0;     // outer: active-set steps, or TAO's iterations
+  Eigen::VectorXd v, mu;          // on every rank; μ has one entry per bounded component, ≥ 0
+  Eigen::VectorXd lambda_t;       // with friction: the tangential multipliers (m · n_directions), on every rank
+  long long stick = 0, slip = 0;  // with friction: contact rows sticking, and slipping with a friction force
+  int iterations = 0;             // outer: active-set steps, or TAO's iterations
   long long krylov_iterations = 0;
   long long linear_solves = 0;
   int preconditioner_setups = 0;  // pdas: KSP set-ups of the preconditioner
