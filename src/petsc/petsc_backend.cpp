@@ -87,45 +87,34 @@ class SolverOfK final : public LinearSolver {
 
 // The relative KKT residual of certificate.hpp without stationarity (which the inner solves
 // hold): primal violation / L, negative multipliers / F, complementarity / (F L). K u sums the
-// ranks' products when qp.K is a share.
-double relative_residual(const QuadraticProgram& qp, const MatrixLayout& layout, const VectorXd& u,
-                         const VectorXd& mu) {
-  if (mu.size() == 0) return 0;
-  const VectorXd lambda = mu.cwiseMax(0.0);
-  const VectorXd w = qp.g - qp.B * u;
-  VectorXd Ku = qp.K * u;
-  if (layout.share) sum_over_ranks(Ku.data(), Ku.size());
-  const double L = length_scale(qp, u), F = force_scale(qp.f, Ku, qp.B.transpose() * lambda);
-  const double violation = std::max(0.0, -w.minCoeff());
-  const double negative = std::max(0.0, -mu.minCoeff());
-  const double complementarity = lambda.cwiseProduct(w).cwiseAbs().maxCoeff();
-  auto ratio = [](double x, double scale) { return scale > 0 ? x / scale : x; };
-  return std::max({ratio(violation, L), ratio(negative, F), ratio(complementarity, F * L)});
-}
-
-// The same with friction, for one Tresca solve with the discs' radii `radii`: the tangential
-// condition's natural-map residual joins (certificate.hpp's `tangential`, over F with ρ = F/L),
-// and F counts Tᵀλ_T.
+// ranks' products when qp.K is a share. With friction (`lambda_t` and the discs' radii of this
+// Tresca solve given) the tangential condition's natural-map residual joins, over F with
+// ρ = F/L (certificate.hpp's `tangential`), and F counts Tᵀλ_T.
 double relative_residual(const QuadraticProgram& qp, const MatrixLayout& layout, const VectorXd& u, const VectorXd& mu,
-                         const VectorXd& lambda_t, const VectorXd& radii) {
+                         const VectorXd* lambda_t = nullptr, const VectorXd* radii = nullptr) {
+  const bool friction = lambda_t && radii;
+  if (mu.size() == 0 && !friction) return 0;
   const VectorXd lambda = mu.cwiseMax(0.0);
   const VectorXd w = qp.g - qp.B * u;
   VectorXd Ku = qp.K * u;
   if (layout.share) sum_over_ranks(Ku.data(), Ku.size());
   const double L = length_scale(qp, u);
-  const double F = std::max(force_scale(qp.f, Ku, qp.B.transpose() * lambda),
-                            inf_norm(VectorXd(qp.friction.T.transpose() * lambda_t)));
+  double F = force_scale(qp.f, Ku, qp.B.transpose() * lambda);
+  if (friction) F = std::max(F, inf_norm(VectorXd(qp.friction.T.transpose() * *lambda_t)));
   auto ratio = [](double x, double scale) { return scale > 0 ? x / scale : x; };
-  double normal = 0;
+  double residual = 0;
   if (mu.size() > 0) {
     const double violation = std::max(0.0, -w.minCoeff());
     const double negative = std::max(0.0, -mu.minCoeff());
     const double complementarity = lambda.cwiseProduct(w).cwiseAbs().maxCoeff();
-    normal = std::max({ratio(violation, L), ratio(negative, F), ratio(complementarity, F * L)});
+    residual = std::max({ratio(violation, L), ratio(negative, F), ratio(complementarity, F * L)});
   }
-  const double rho = F > 0 && L > 0 ? F / L : 1.0;
-  const double tangential = natural_map_residual(qp.friction, lambda_t, radii, slip_of(qp.friction, u), rho);
-  return std::max(normal, ratio(tangential, F));
+  if (friction) {
+    const double rho = F > 0 && L > 0 ? F / L : 1.0;
+    const double tangential = natural_map_residual(qp.friction, *lambda_t, *radii, slip_of(qp.friction, u), rho);
+    residual = std::max(residual, ratio(tangential, F));
+  }
+  return residual;
 }
 
 void check_petsc_options(const SolveOptions& options) { backend_settings(options); }
@@ -216,7 +205,7 @@ SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& lay
       if (problem.start_lambda.size() > 0) step.inexact = false;
       step.tol = step_options.tol;
       step.friction_residual = [&](const VectorXd& v, const VectorXd& mu, const VectorXd& lambda_t) {
-        return relative_residual(qp, layout, VectorXd(form.Q * v), mu, lambda_t, radii);
+        return relative_residual(qp, layout, VectorXd(form.Q * v), mu, &lambda_t, &radii);
       };
       solved = solve_bound_qp_petsc(std::move(problem), step);
       sums.krylov_iterations += solved.krylov_iterations;
