@@ -216,7 +216,7 @@ RunReport run_distributed(const Scene& scene, const RunOptions& options) {
   if (scene.friction_law() != FrictionLaw::None)
     throw InputError("backend", "= \"petsc\": " + to_string(scene.friction_law()) +
                                     " friction is not solved on several processes (under mpirun) yet: run the "
-                                    "scene on one process (petsc solves 2D friction there), or with another backend");
+                                    "scene on one process (petsc solves friction there), or with another backend");
   DistributedPdasOptions settings = pdas_options(scene.solver);
   settings.without_bounds = options.no_contact;
   const auto phase = [&options](const char* name) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -28,6 +29,17 @@ constexpr double kP1Tolerance = 1e-6;
 // all three (mindlin-on-plane, mindlin-cylinders, sliding-block) to active_set's answer. A small
 // c trusts the multiplier, which the step's solve computes, over a slip it has just fixed to 0.
 constexpr double kTangentialWeight = 0.01;
+// 3D: a slipping row's Newton term β (I − n nᵀ) (TangentialStates) joins W while β is at most
+// this times A's diagonal there; a stiffer row is pinned instead (β → ∞: it slips along n only).
+// The term changes the path, not the answer (at the answer the slip is along n, where it is 0),
+// and the preconditioner does not see it (MaskedSystem::smoother_op), so a large β only slows
+// CG. Measured on mindlin-spheres.json (125 018 DOFs, tol 1e-10, three load steps): 1 → 138
+// steps along the path, 1974 CG iterations, 189 s; 10 → 100, 1868, 185 s; no pins (1e9) →
+// 105, 2140, 223 s. On a 14 200-DOF coarsening: 90, 73 and 72 steps.
+constexpr double kNewtonBound = 10.0;
+// 3D: with the sets settled, the Newton steps on the slip directions go on at the final rule
+// while the residual falls; this many steps without halving the best residual is a stall.
+constexpr int kStalledSteps = 25;
 // The energy solve's delay d: θ − rᵀx_k, the error left in rᵀx_k, is estimated by
 // rᵀx_{k+d} − rᵀx_k (Strakoš and Tichý's lower bound on CG's A-norm error, which is sharp
 // once the convergence is steady; with a multigrid preconditioner each iteration gains about
@@ -137,8 +149,10 @@ class KeptSolverOfA final : public SolverOfA {
   explicit KeptSolverOfA(std::shared_ptr<FineState> state) : state_(std::move(state)) {}
   bool solve(Vec rhs, Vec x, double force) override {  // the caller holds petsc_mutex()
     FineState& s = *state_;
-    // No row fixed: W is A, and the coarse operators are A's again.
+    // No row fixed and no Newton term: W is A, and the coarse operators are A's again.
     s.level.mask.fix({});
+    s.level.mask.couple({});
+    s.level.mask.pin({});
     if (s.truncation.fix_rows({})) return false;
     if (VecSet(x, 0.0)) return false;
     const double target = kInnerFraction * s.tol * std::max(force, 1e-300);
@@ -186,15 +200,22 @@ struct LevelProblem {
 // semismooth Newton method for Tresca's law, on the primal variables): sticking, they are fixed
 // at the offset (no slip) and λ_T = b − A v there; slipping, they are free and λ_T = r n is a
 // given force along the direction n. The next state, from z = λ_T + c (v_T − offset) with c
-// kTangentialWeight times A's diagonal: stick where ‖z‖ ≤ r, else slip along n = z/‖z‖. In 2D (one direction) that is
-// the primal-dual active-set method for the interval [−r, r]. 2D only (the backend registers one
-// tangential direction, petsc_backend.cpp): in 3D a disc's slip direction would have to follow
-// the steps. Kept fixed per step and updated between steps, it converged linearly and slowly
-// (879 steps on a coarse mindlin-spheres.json, stalling at 1.1e-10), so a Newton step on the
-// direction (a symmetric term (r/‖z‖)(I − nnᵀ) at each slipping node, in W) is what 3D needs.
+// kTangentialWeight times A's diagonal (one c per row, averaged over its directions): stick
+// where ‖z‖ ≤ r, else slip along n = z/‖z‖. In 2D (one direction) that is the primal-dual
+// active-set method for the interval [−r, r]. In 3D the direction of a disc must follow the
+// steps too. Kept fixed per step and updated between steps, it converged linearly and slowly
+// (879 steps on a coarse mindlin-spheres.json, stalling at 1.1e-10); so a slipping row's force
+// is linearised in its slip w = v_T − offset, as Newton's method does:
+//     λ_T = r n + β P w,   P = I − n nᵀ,   β = c r / (‖z‖ − r)
+// (at the answer z = (r + c‖w‖) n, so β = r/‖w‖ and β P is the derivative of r w/‖w‖). The
+// term β P joins W (MaskedSystem::couple), symmetric and positive semidefinite, and β P offset
+// joins b — while β ≤ kNewtonBound times A's diagonal. A stiffer row (little slip for its
+// force: near sticking) is pinned (MaskedSystem::pin): it slips along n only, its force across
+// n is measured as λ_T = b − A v, and its direction turns by that force (the limit β → ∞).
 struct TangentialStates {
   std::vector<char> stick;        // per contact row
   std::vector<double> direction;  // per tangential variable: n where slipping
+  std::vector<double> beta;       // per contact row, 3D: the Newton term's β where slipping (0: none)
   std::vector<double> lambda_t;   // per tangential variable
 };
 
@@ -278,6 +299,9 @@ PetscErrorCode active_set_loop(const LevelProblem& level, LevelSolver& solver, T
   std::set<std::uint64_t> seen;
   bool tight = !settings.inexact;
   const LevelProblem* friction = nd ? &level : nullptr;
+  std::vector<char> pinned(n_rows, 0);  // 3D: slipping rows whose slip across n is kept this step
+  double best_tight = std::numeric_limits<double>::infinity();  // 3D: the stall test's
+  int stalled_steps = 0;
   for (int k = 1;; ++k) {
     seen.insert(fingerprint(active, level.bounded, comm, friction, states));
     std::vector<std::pair<PetscInt, double>> fixed_values;
@@ -297,18 +321,54 @@ PetscErrorCode active_set_loop(const LevelProblem& level, LevelSolver& solver, T
     }
     if (truncation) PetscCall(truncation->fix_rows(fixed));
     solver.mask.fix(fixed);
-    // The slipping rows' friction force, −r n, joins b.
+    // The slipping rows' friction force, −r n, joins b; in 3D its Newton term −β P (v_T −
+    // offset) too, as β P in W and β P offset in b.
     Vec b = level.b;
     if (nd) {
       PetscCall(VecCopy(level.b, b_step));
       PetscScalar* bs = nullptr;
       PetscCall(VecGetArray(b_step, &bs));
-      for (std::size_t j = 0; j < n_rows; ++j)
-        if (!states->stick[j])
-          for (int d = 0; d < nd; ++d)
-            if (level.tangential[j * nd + d] >= 0)
-              bs[level.tangential[j * nd + d] - first] -= level.radius[j] * states->direction[j * nd + d];
+      std::vector<MaskedSystem::Block> blocks;
+      std::vector<MaskedSystem::Pin> pins;
+      const PetscScalar* xs = nullptr;
+      PetscCall(VecGetArrayRead(x, &xs));
+      for (std::size_t j = 0; j < n_rows; ++j) {
+        pinned[j] = 0;
+        if (states->stick[j]) continue;
+        for (int d = 0; d < nd; ++d)
+          if (level.tangential[j * nd + d] >= 0)
+            bs[level.tangential[j * nd + d] - first] -= level.radius[j] * states->direction[j * nd + d];
+        if (nd == 2 && states->beta[j] > 0) {
+          const std::size_t t = j * nd;
+          const double n0 = states->direction[t], n1 = states->direction[t + 1];
+          const PetscInt r0 = level.tangential[t], r1 = level.tangential[t + 1];
+          const double scale = r0 >= 0 && r1 >= 0 ? 0.5 * (tangential_diagonal[t] + tangential_diagonal[t + 1])
+                               : r0 >= 0          ? tangential_diagonal[t]
+                                                  : tangential_diagonal[t + 1];
+          if (r0 >= 0 && r1 >= 0 && states->beta[j] > kNewtonBound * scale) {
+            // Stiff (near sticking): β → ∞, the row slips along n only (m·w = 0); so large a
+            // term would slow CG, whose preconditioner is built on A alone.
+            const double m0 = -n1, m1 = n0;
+            pins.push_back({r0 - first, r1 - first, m0, m1, m0 * level.offset[t] + m1 * level.offset[t + 1]});
+            pinned[j] = 1;
+            continue;
+          }
+          const double beta = states->beta[j];
+          const double p00 = beta * (1 - n0 * n0), p01 = -beta * n0 * n1, p11 = beta * (1 - n1 * n1);
+          if (r0 >= 0) bs[r0 - first] += p00 * level.offset[t] + p01 * level.offset[t + 1];
+          if (r1 >= 0) bs[r1 - first] += p01 * level.offset[t] + p11 * level.offset[t + 1];
+          if (r0 >= 0 && r1 >= 0)
+            blocks.push_back({r0 - first, r1 - first, p00, p01, p11});
+          else if (r0 >= 0)
+            blocks.push_back({r0 - first, -1, p00, 0, 0});
+          else
+            blocks.push_back({r1 - first, -1, p11, 0, 0});
+        }
+      }
+      PetscCall(VecRestoreArrayRead(x, &xs));
       PetscCall(VecRestoreArray(b_step, &bs));
+      solver.mask.couple(std::move(blocks));
+      solver.mask.pin(std::move(pins));
       b = b_step;
     }
     PetscCall(solver.mask.system(b, values, x, rhs));
@@ -347,6 +407,7 @@ PetscErrorCode active_set_loop(const LevelProblem& level, LevelSolver& solver, T
         // λ_T = b − A x where the row sticks, r n where it slips; then the next state from z.
         next_states.stick.assign(n_rows, 0);
         next_states.direction.assign(n_tangential, 0.0);
+        next_states.beta.assign(n_rows, 0.0);
         states->lambda_t.assign(n_tangential, 0.0);
         for (std::size_t j = 0; j < n_rows; ++j) {
           double z[3] = {0, 0, 0}, norm = 0;
@@ -354,15 +415,60 @@ PetscErrorCode active_set_loop(const LevelProblem& level, LevelSolver& solver, T
             const std::size_t t = j * nd + d;
             if (level.tangential[t] < 0) continue;  // no free DOF: slip 0, λ_T 0
             const PetscInt r = level.tangential[t] - first;
-            states->lambda_t[t] = states->stick[j] ? bv[r] - ax[r] : level.radius[j] * states->direction[t];
-            z[d] = states->lambda_t[t] + kTangentialWeight * tangential_diagonal[t] * (xs[r] - level.offset[t]);
-            norm += z[d] * z[d];
+            states->lambda_t[t] =
+                states->stick[j] || pinned[j] ? bv[r] - ax[r] : level.radius[j] * states->direction[t];
             finite = finite && std::isfinite(states->lambda_t[t]) && std::isfinite(xs[r]);
+          }
+          // 3D slip: λ_T = r n + β P w (the step's linearised force).
+          if (nd == 2 && !states->stick[j] && !pinned[j] && states->beta[j] > 0) {
+            const std::size_t t = j * nd;
+            const double n0 = states->direction[t], n1 = states->direction[t + 1];
+            double w[2] = {0, 0};
+            for (int d = 0; d < nd; ++d)
+              if (level.tangential[t + d] >= 0) w[d] = xs[level.tangential[t + d] - first] - level.offset[t + d];
+            const double along = n0 * w[0] + n1 * w[1];
+            for (int d = 0; d < nd; ++d)
+              if (level.tangential[t + d] >= 0)
+                states->lambda_t[t + d] += states->beta[j] * (w[d] - along * states->direction[t + d]);
+          }
+          // One weight c per row, A's diagonal averaged over its directions: with a weight per
+          // direction, z ∥ n would not make λ_T ∥ w, and the loop would stop short of the answer.
+          double weight = 0;
+          int counted = 0;
+          for (int d = 0; d < nd; ++d)
+            if (level.tangential[j * nd + d] >= 0) {
+              weight += tangential_diagonal[j * nd + d];
+              ++counted;
+            }
+          const double diagonal_mean = counted > 0 ? weight / counted : 0.0;
+          for (int d = 0; d < nd; ++d) {
+            const std::size_t t = j * nd + d;
+            if (level.tangential[t] < 0) continue;
+            const PetscInt r = level.tangential[t] - first;
+            z[d] = states->lambda_t[t] + kTangentialWeight * diagonal_mean * (xs[r] - level.offset[t]);
+            norm += z[d] * z[d];
           }
           norm = std::sqrt(norm);
           next_states.stick[j] = level.radius[j] > 0 && norm <= level.radius[j];
           if (!next_states.stick[j] && norm > 0)
             for (int d = 0; d < nd; ++d) next_states.direction[j * nd + d] = z[d] / norm;
+          if (pinned[j] && !next_states.stick[j]) {
+            // A pinned row turns by its force across n, λ_m, over (r + c‖w‖): with c = A's
+            // diagonal (≥ the row's own stiffness, a Schur complement of A) the turn never
+            // overshoots the answer's, and falls short by at most 1/(1 + kNewtonBound).
+            double turned[2] = {0, 0}, length = 0;
+            for (int d = 0; d < nd; ++d) {
+              const std::size_t t = j * nd + d;
+              if (level.tangential[t] < 0) continue;
+              turned[d] = states->lambda_t[t] + diagonal_mean * (xs[level.tangential[t] - first] - level.offset[t]);
+              length += turned[d] * turned[d];
+            }
+            length = std::sqrt(length);
+            if (length > 0)
+              for (int d = 0; d < nd; ++d) next_states.direction[j * nd + d] = turned[d] / length;
+          }
+          if (nd == 2 && !next_states.stick[j] && counted > 0 && norm > level.radius[j] && level.radius[j] > 0)
+            next_states.beta[j] = kTangentialWeight * diagonal_mean * level.radius[j] / (norm - level.radius[j]);
         }
       }
       PetscCall(VecRestoreArrayRead(x, &xs));
@@ -381,7 +487,7 @@ PetscErrorCode active_set_loop(const LevelProblem& level, LevelSolver& solver, T
     for (std::size_t i = 0; i < m; ++i) changes += next[i] != active[i];
     for (std::size_t j = 0; j < n_rows; ++j)
       changes += next_states.stick[j] != states->stick[j] ||
-                 (!next_states.stick[j] && next_states.direction[j * nd] * states->direction[j * nd] <= 0);
+                 (nd == 1 && !next_states.stick[j] && next_states.direction[j] * states->direction[j] <= 0);
     const bool settled = count_over_ranks(changes, comm) == 0;
     const bool repeats = !settled && seen.count(fingerprint(next, level.bounded, comm, friction, &next_states)) > 0;
     if (!settings.final_steps && (outcome->residual <= settings.tol || settled || repeats)) {
@@ -405,13 +511,25 @@ PetscErrorCode active_set_loop(const LevelProblem& level, LevelSolver& solver, T
       outcome->status = Status::Converged;
       break;
     }
-    if (settled) {
+    // 3D: the slip directions are Newton's unknowns, not a set: with the sets settled (or
+    // revisited while the directions move) the steps go on while the residual falls.
+    if (nd == 2 && (settled || repeats)) {
+      if (outcome->residual < 0.5 * best_tight) {
+        best_tight = outcome->residual;
+        stalled_steps = 0;
+      } else if (++stalled_steps >= kStalledSteps) {
+        outcome->status = Status::NumericalError;
+        outcome->message = "the Newton steps on the slip directions stalled at residual " +
+                           number_text(outcome->residual) + " (friction: try --backend active_set)";
+        break;
+      }
+    } else if (settled) {
       outcome->status = Status::NumericalError;
       outcome->message = "the active set settled with residual " + number_text(outcome->residual) +
                          " above tol: the inner KSP solves are not accurate enough (a smaller -ksp_rtol may help)";
       break;
     }
-    if (repeats) {
+    if (repeats && nd != 2) {
       outcome->status = Status::NumericalError;
       outcome->message =
           "the active-set steps cycled at residual " + number_text(outcome->residual) +
@@ -428,6 +546,7 @@ PetscErrorCode active_set_loop(const LevelProblem& level, LevelSolver& solver, T
     if (nd) {
       states->stick = std::move(next_states.stick);
       states->direction = std::move(next_states.direction);
+      states->beta = std::move(next_states.beta);
     }
   }
   PetscCall(VecDestroy(&rhs));
@@ -578,7 +697,7 @@ PetscErrorCode set_up_hierarchy(const PetscBoundQp& qp, const BoundPdasOptions& 
   // Jacobi and the rest on A.
   PetscCall(fine->level.mask.create(qp.A));
   PetscCall(PCCreate(comm, &fine->inner));
-  PetscCall(PCSetOperators(fine->inner, fine->level.mask.op(), qp.A));
+  PetscCall(PCSetOperators(fine->inner, fine->level.mask.smoother_op(), qp.A));
   PetscCall(PCSetUseAmat(fine->inner, PETSC_TRUE));
   MultigridData data;
   data.A = qp.A;
@@ -681,6 +800,7 @@ PetscErrorCode solve_bound_pdas(const PetscBoundQp& qp, const BoundPdasOptions& 
     states.stick.resize(qp.radius.size());
     for (std::size_t j = 0; j < qp.radius.size(); ++j) states.stick[j] = qp.radius[j] > 0;
     states.direction.assign(qp.tangential.size(), 0.0);
+    states.beta.assign(qp.radius.size(), 0.0);
     if (qp.start_stick.size() == qp.radius.size() && qp.start_direction.size() == qp.tangential.size()) {
       states.stick = qp.start_stick;
       states.direction = qp.start_direction;
@@ -696,6 +816,8 @@ PetscErrorCode solve_bound_pdas(const PetscBoundQp& qp, const BoundPdasOptions& 
   LoopOutcome outcome;
   PetscCall(active_set_loop(level, fine->level, fine->truncation.active() ? &fine->truncation : nullptr, settings,
                             result->v, active, result->mu, &outcome, friction ? &states : nullptr));
+  fine->level.mask.couple({});
+  fine->level.mask.pin({});
   if (friction) {
     result->lambda_t = std::move(states.lambda_t);
     result->stick = count_over_ranks(std::count(states.stick.begin(), states.stick.end(), 1), comm);

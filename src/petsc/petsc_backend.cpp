@@ -308,7 +308,7 @@ CONTACTQP_BUILTIN(petsc) {
   petsc.option_names = {"method", "hierarchy", "p1_start", "inexact", "loose_reduction", "reuse_preconditioner"};
   petsc.check_options = check_petsc_options;
   petsc.problem_kinds = {ProblemKind::Frictionless, ProblemKind::Tresca, ProblemKind::Coulomb};
-  petsc.max_friction_directions = 1;  // 2D: the loop's tangential states hold an interval (bound_pdas.cpp)
+  petsc.max_friction_directions = 2;  // 2D and 3D (bound_pdas.cpp's tangential states)
 #ifdef CONTACTQP_HAVE_PETSC           // set by CMake when PETSc was found (CONTACTQP_WITH_PETSC)
   petsc.solve = [](const QuadraticProgram& qp, const SolveOptions& options) {
     return solve_bound_form(qp, MatrixLayout{}, options);  // K whole on every rank
