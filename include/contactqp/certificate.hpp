@@ -93,6 +93,11 @@ CertificateTerms certificate_terms(const QuadraticProgram& qp, const VectorXd& u
 CertificateTerms certificate_terms(const QuadraticProgram& qp, const VectorXd& Ku, const VectorXd& u,
                                    const VectorXd& lambda);
 Certificate certificate_from(const CertificateTerms& terms);
+// certify() with K u given, friction included: for a problem whose K this process holds only a
+// share of (its library sums the shares' products over the processes; every other vector whole).
+// θ needs K_factor, a solver of the whole K; without one the dual is not available.
+Certificate certify_given_Ku(const QuadraticProgram& qp, const VectorXd& Ku, const VectorXd& u, const VectorXd& lambda,
+                             const VectorXd& lambda_t, const LinearSolver* K_factor);
 
 // The scales above, exposed so that backends' stopping rules measure the same things.
 double force_scale(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda,

@@ -13,9 +13,11 @@ class RankShares final : public ProblemInParts {
  public:
   explicit RankShares(ParQuadraticProgram qp) : qp_(std::move(qp)) {}
   const QuadraticProgram& part() const override { return qp_.share; }
+  QuadraticProgram& part_to_step() override { return qp_.share; }
   SolveResult solve(const SolveOptions& options) const override { return contactqp::solve(qp_, options); }
-  Certificate certify(const VectorXd& u, const VectorXd& lambda, const LinearSolver* K_factor) const override {
-    return contactqp::certify(qp_, u, lambda, K_factor);
+  Certificate certify(const VectorXd& u, const VectorXd& lambda, const VectorXd& lambda_t,
+                      const LinearSolver* K_factor) const override {
+    return contactqp::certify(qp_, u, lambda, lambda_t, K_factor);
   }
 
  private:

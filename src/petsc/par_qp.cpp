@@ -51,7 +51,9 @@ SolveResult solve(const ParQuadraticProgram& qp, const SolveOptions& options) {
     if (qp.ranks > 1) detail::sum_over_ranks(diagonal.data(), diagonal.size());
     return diagonal;
   };
-  K.certify = [&qp](const SolveResult& result) { return certify(qp, result.u, result.lambda, result.K_factor.get()); };
+  K.certify = [&qp](const SolveResult& result) {
+    return certify(qp, result.u, result.lambda, result.lambda_t, result.K_factor.get());
+  };
   K.whole = qp.ranks <= 1;
   return detail::solve_with(qp.share, options, K, [&layout](const QuadraticProgram& scaled, const SolveOptions& o) {
     return detail::solve_bound_form(scaled, layout, o);
@@ -60,15 +62,14 @@ SolveResult solve(const ParQuadraticProgram& qp, const SolveOptions& options) {
 
 Certificate certify(const ParQuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda,
                     const LinearSolver* K_factor) {
-  if (qp.ranks <= 1) return certify(qp.share, u, lambda, K_factor);
-  // Every vector but K u is whole on every rank: the terms need no other sum.
-  const VectorXd Ku = K_times(qp, u);
-  CertificateTerms terms = certificate_terms(qp.share, Ku, u, lambda);
-  if (K_factor && K_factor->ok()) {
-    const VectorXd r = Ku - qp.share.f + qp.share.B.transpose() * lambda;
-    terms.r_K_inverse_r = r.dot(K_factor->solve(r));
-  }
-  return certificate_from(terms);
+  return certify(qp, u, lambda, VectorXd(), K_factor);
+}
+
+Certificate certify(const ParQuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda, const VectorXd& lambda_t,
+                    const LinearSolver* K_factor) {
+  if (qp.ranks <= 1) return certify(qp.share, u, lambda, lambda_t, K_factor);
+  // Every vector but K u is whole on every rank (T and λ_T too): the terms need no other sum.
+  return certify_given_Ku(qp.share, K_times(qp, u), u, lambda, lambda_t, K_factor);
 }
 
 namespace detail {

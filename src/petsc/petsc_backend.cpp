@@ -159,13 +159,6 @@ SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& lay
                                             (settings.kept_hierarchy ? "" : ", hierarchy=fresh") +
                                             ": the petsc backend solves friction by method=pdas with hierarchy=kept "
                                             "(the defaults) only");
-  // Under mpirun a contact row's tangential variables may fall on another rank than its normal
-  // one, and the two-body path's rank shares gave an answer the certificate rejects
-  // (stationarity 8e-4): refused until the distributed run builds T's rows in parts.
-  if (friction && process_count() > 1)
-    throw InputError("backend", "= \"petsc\": " + to_string(qp.friction.law) +
-                                    " friction is not solved on several processes (under mpirun) yet: run it on "
-                                    "one process, or with another backend");
   settings.tol = options.tol;
   settings.max_iterations = options.max_iterations;
   settings.petsc_options = petsc_options_of(options.library_options);

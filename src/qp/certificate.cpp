@@ -99,33 +99,38 @@ Certificate certificate_from(const CertificateTerms& t) {
 
 Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda,
                     const LinearSolver* K_factor) {
-  if (!qp.friction.empty()) return certify(qp, u, lambda, VectorXd(), K_factor);  // λ_T read as 0
-  const VectorXd Ku = K_times(qp, u);
-  CertificateTerms terms = certificate_terms(qp, Ku, u, lambda);
+  return certify(qp, u, lambda, VectorXd(), K_factor);  // with friction, λ_T read as 0
+}
+
+// With friction the formulas gain T's rows (certificate.hpp); without, certificate_terms().
+Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda, const VectorXd& lambda_t,
+                    const LinearSolver* K_factor) {
   std::unique_ptr<CholeskyFactor> own_factor;
   if (!K_factor) {
     own_factor = std::make_unique<CholeskyFactor>(qp.K);
     K_factor = own_factor.get();
   }
-  if (K_factor->ok()) {
-    const VectorXd r = Ku - qp.f + qp.B.transpose() * lambda;
-    terms.r_K_inverse_r = r.dot(K_factor->solve(r));
-  }
-  return certificate_from(terms);
+  return certify_given_Ku(qp, K_times(qp, u), u, lambda, lambda_t, K_factor);
 }
 
-// With friction the formulas gain T's rows (certificate.hpp); without, the certificate above.
-Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda, const VectorXd& lambda_t_in,
-                    const LinearSolver* K_factor) {
-  if (qp.friction.empty()) return certify(qp, u, lambda, K_factor);
+Certificate certify_given_Ku(const QuadraticProgram& qp, const VectorXd& Ku, const VectorXd& u, const VectorXd& lambda,
+                             const VectorXd& lambda_t_in, const LinearSolver* K_factor) {
+  if (qp.friction.empty()) {
+    CertificateTerms terms = certificate_terms(qp, Ku, u, lambda);
+    if (K_factor && K_factor->ok()) {
+      const VectorXd r = Ku - qp.f + qp.B.transpose() * lambda;
+      terms.r_K_inverse_r = r.dot(K_factor->solve(r));
+    }
+    return certificate_from(terms);
+  }
   Certificate c;
   const VectorXd lambda_t = tangential_multipliers(qp, lambda_t_in);
-  const VectorXd Ku = K_times(qp, u);
   const VectorXd Btl = qp.B.transpose() * lambda;
-  VectorXd r = Ku - qp.f + Btl + qp.friction.T.transpose() * lambda_t;  // stationarity residual
-  const VectorXd slack = qp.B * u - qp.g;                               // ≤ 0 when feasible
+  const VectorXd Ttl = qp.friction.T.transpose() * lambda_t;
+  VectorXd r = Ku - qp.f + Btl + Ttl;      // stationarity residual
+  const VectorXd slack = qp.B * u - qp.g;  // ≤ 0 when feasible
 
-  const double F = force_scale(qp, u, lambda, lambda_t);
+  const double F = std::max(force_scale(qp.f, Ku, Btl), inf_norm(Ttl));
   const double L = length_scale(qp, u);
   const double lambda_max = inf_norm(lambda);
 
@@ -148,13 +153,8 @@ Certificate certify(const QuadraticProgram& qp, const VectorXd& u, const VectorX
   c.objective += friction_energy;
 
   // θ(λ) = L(u, λ) − ½ rᵀK⁻¹r: exact, and accurate near the optimum where r → 0.
-  std::unique_ptr<CholeskyFactor> own_factor;
-  if (!K_factor) {
-    own_factor = std::make_unique<CholeskyFactor>(qp.K);
-    K_factor = own_factor.get();
-  }
   c.dual_available = false;
-  if (K_factor->ok()) {
+  if (K_factor && K_factor->ok()) {
     c.dual_objective = lagrangian - 0.5 * r.dot(K_factor->solve(r));
     c.duality_gap = c.objective - c.dual_objective;
     const double energy = std::max({std::abs(c.objective), std::abs(c.dual_objective), 0.5 * std::abs(uKu),

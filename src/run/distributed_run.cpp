@@ -29,11 +29,6 @@ const DistributedRun* taker(const Scene& scene, const RunOptions& options, std::
 
 void register_distributed_run(DistributedRun run) { distributed_runs().add(std::move(run)); }
 
-void refuse_steps_on_several_processes(Backend backend) {
-  throw InputError("steps", "are not solved by the " + to_string(backend) +
-                                " backend on several processes (under mpirun) yet: run the scene on one process");
-}
-
 void refuse_held_by_contact_on_several_processes(Backend backend, const std::string& motion) {
   throw InputError("backend", "= \"" + to_string(backend) + "\": a body held only by its contacts (it moves freely " +
                                   motion +

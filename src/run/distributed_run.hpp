@@ -21,9 +21,6 @@ void register_distributed_run(DistributedRun run);
 // The run of the first registered distributed run that takes it. Collective.
 RunReport run_scene_distributed(const Scene& scene, const RunOptions& options);
 
-// Load steps of several bodies on several processes, which a problem held in parts does not
-// solve yet (InputError naming "steps").
-[[noreturn]] void refuse_steps_on_several_processes(Backend backend);
 // A body only its contacts hold (it moves freely `motion`, e.g. "along +y", without them), which
 // neither the distributed run nor a problem held in parts solves yet: one refusal for both
 // (InputError naming "backend").

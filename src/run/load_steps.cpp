@@ -1,6 +1,7 @@
 // Load steps (docs/friction.md): quasi-static and incremental. Each step solves for the state at
 // its end from the state the last one left: with friction the slip of a step is the tangential
 // displacement since the last step, so a node that sticks keeps its tangential offset.
+#include "run/load_steps.hpp"
 #include "contact/contact.hpp"
 #include "contactqp/run.hpp"
 #include "contactqp/solve.hpp"
@@ -21,6 +22,15 @@ PostProcessed postprocess(const Model& model, const QuadraticProgram& qp, const 
 
 SolveResult solve_load_steps(Model& model, QuadraticProgram& qp, const Scene& scene, const SolveOptions& options,
                              std::vector<StepReport>* steps) {
+  return detail::solve_load_steps_with(model, qp, scene, options, steps,
+                                       [&qp](const SolveOptions& step_options) { return solve(qp, step_options); });
+}
+
+namespace detail {
+
+SolveResult solve_load_steps_with(Model& model, QuadraticProgram& qp, const Scene& scene, const SolveOptions& options,
+                                  std::vector<StepReport>* steps,
+                                  const std::function<SolveResult(const SolveOptions& options)>& solve_step) {
   const std::vector<std::vector<double>> factors = load_factors(scene);
   std::vector<std::string> names;  // the named loads, in load order
   for (const LoadSpec& load : model.scene.loads) names.push_back(load.name);
@@ -35,7 +45,7 @@ SolveResult solve_load_steps(Model& model, QuadraticProgram& qp, const Scene& sc
     apply_load_step(model, qp, factors[k], path);
     if (friction) detail::set_friction_offset(model, qp, positions);
     Stopwatch clock;
-    result = solve(qp, step_options);
+    result = solve_step(step_options);
     const double seconds = clock.seconds();
     timings.merge(result.timings);
     iterations += result.iterations;
@@ -65,5 +75,7 @@ SolveResult solve_load_steps(Model& model, QuadraticProgram& qp, const Scene& sc
   result.iterations = iterations;
   return result;
 }
+
+}  // namespace detail
 
 }  // namespace contactqp

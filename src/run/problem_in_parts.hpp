@@ -19,9 +19,12 @@ class ProblemInParts {
   virtual ~ProblemInParts() = default;
   // This process's part: K a part of the problem's; f, B, g and the rows as post-processing reads them.
   virtual const QuadraticProgram& part() const = 0;
-  virtual SolveResult solve(const SolveOptions& options) const = 0;  // collective
-  virtual Certificate certify(const VectorXd& u, const VectorXd& lambda,
-                              const LinearSolver* K_factor) const = 0;  // collective
+  // The same, for load steps to change its f, g and friction offset (whole on every process).
+  virtual QuadraticProgram& part_to_step() = 0;
+  virtual SolveResult solve(const SolveOptions& options) const = 0;  // collective, on part()
+  // λ_T with friction (empty reads as 0). Collective.
+  virtual Certificate certify(const VectorXd& u, const VectorXd& lambda, const VectorXd& lambda_t,
+                              const LinearSolver* K_factor) const = 0;
 };
 
 struct PartsAssembly {

@@ -9,6 +9,7 @@
 #include "contactqp/solve.hpp"
 #include "run/adaptive_run.hpp"
 #include "run/distributed_run.hpp"
+#include "run/load_steps.hpp"
 #include "run/problem_in_parts.hpp"
 
 namespace contactqp {
@@ -64,7 +65,6 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   // needs K whole.
   const std::shared_ptr<detail::ProblemInParts> in_parts =
       options.no_contact ? nullptr : detail::assemble_in_parts(*model, scene.solver);
-  if (in_parts && !scene.steps.empty()) detail::refuse_steps_on_several_processes(scene.solver.backend);
   // The free modes' proximal steps need K whole (solvers/floating.cpp): not on a problem in parts yet.
   if (in_parts && model->free_modes.cols() > 0)
     detail::refuse_held_by_contact_on_several_processes(scene.solver.backend,
@@ -85,8 +85,12 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   phase("solve");
   if (options.no_contact)
     report.result = solve_without_contact(*qp, scene.solver);
-  else if (in_parts)
+  else if (in_parts && scene.steps.empty())
     report.result = in_parts->solve(scene.solver);
+  else if (in_parts)  // each step changes the part's f, g and friction offset, not its K
+    report.result = detail::solve_load_steps_with(
+        *model, in_parts->part_to_step(), scene, report.options, &report.steps,
+        [&in_parts](const SolveOptions& step_options) { return in_parts->solve(step_options); });
   else if (scene.steps.empty())
     report.result = solve(*qp, with_initial_guess(scene.solver, options, *model, *qp));
   else
@@ -113,10 +117,10 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   if (certified)
     report.certificate = *report.result.certificate;
   else
-    report.certificate =
-        in_parts
-            ? in_parts->certify(report.result.u, report.result.lambda, report.result.K_factor.get())
-            : certify(*qp, report.result.u, report.result.lambda, report.result.lambda_t, report.result.K_factor.get());
+    report.certificate = in_parts ? in_parts->certify(report.result.u, report.result.lambda, report.result.lambda_t,
+                                                      report.result.K_factor.get())
+                                  : certify(*qp, report.result.u, report.result.lambda, report.result.lambda_t,
+                                            report.result.K_factor.get());
   report.timings.merge(model->timings);
   report.timings.merge(report.result.timings);
   if (!certified) report.timings.add("certify", clock.seconds());

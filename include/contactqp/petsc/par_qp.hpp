@@ -57,8 +57,12 @@ VectorXd K_times(const ParQuadraticProgram& qp, const VectorXd& u);
 SolveResult solve(const ParQuadraticProgram& qp, const SolveOptions& options);
 
 // certify() for it: the same formulas (certificate.hpp's certificate_terms() and
-// certificate_from()) with K u summed over the ranks; θ needs K_factor (the petsc backend's result carries one), else it is not available.
+// certificate_from(), or with friction certify_given_Ku()) with K u summed over the ranks; θ
+// needs K_factor (the petsc backend's result carries one), else it is not available. λ_T:
+// m · n_directions entries with friction (empty reads as 0).
 Certificate certify(const ParQuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda,
+                    const LinearSolver* K_factor);
+Certificate certify(const ParQuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda, const VectorXd& lambda_t,
                     const LinearSolver* K_factor);
 
 // Splits a graph (vertex v's neighbours are neighbours[offsets[v]] .. neighbours[offsets[v + 1] − 1])
