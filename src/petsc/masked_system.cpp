@@ -7,20 +7,18 @@ namespace contactqp::detail {
 namespace {
 
 // A pin's projection (masked_system.hpp) on a vector's pair, with d the diagonal of A:
-// Π v = v − D⁻¹m (mᵀv)/g, or transposed Πᵀ v = v − m (mᵀD⁻¹v)/g; returns what it took out,
-// mᵀv/g or mᵀD⁻¹v/g.
-double project(const MaskedSystem::Pin& p, const PetscScalar* d, PetscScalar* v, bool transposed) {
+// Π v = v − D⁻¹m (mᵀv)/g, or transposed Πᵀ v = v − m (mᵀD⁻¹v)/g.
+void project(const MaskedSystem::Pin& p, const PetscScalar* d, PetscScalar* v, bool transposed) {
   const double g = p.m0 * p.m0 / d[p.i] + p.m1 * p.m1 / d[p.j];
   if (!transposed) {
     const double s = (p.m0 * v[p.i] + p.m1 * v[p.j]) / g;
     v[p.i] -= p.m0 / d[p.i] * s;
     v[p.j] -= p.m1 / d[p.j] * s;
-    return s;
+    return;
   }
   const double s = (p.m0 * v[p.i] / d[p.i] + p.m1 * v[p.j] / d[p.j]) / g;
   v[p.i] -= p.m0 * s;
   v[p.j] -= p.m1 * s;
-  return s;
 }
 
 // m mᵀv/g (Πᵀ's complement, transposed false) or D⁻¹m mᵀD⁻¹v/g (Π's, true) added to out's pair.
