@@ -35,7 +35,7 @@ constexpr double kTangentialWeight = 0.01;
 // and the preconditioner does not see it (MaskedSystem::smoother_op), so a large β only slows
 // CG. Measured on mindlin-spheres.json (125 018 DOFs, tol 1e-10, three load steps): 1 → 138
 // steps along the path, 1974 CG iterations, 189 s; 10 → 100, 1868, 185 s; no pins (1e9) →
-// 105, 2140, 223 s. On a 14 200-DOF coarsening: 90, 73 and 72 steps.
+// 105, 2140, 223 s. On a 14 200-DOF coarsening: 90, 74 and 72 steps.
 constexpr double kNewtonBound = 10.0;
 // 3D: with the sets settled, the Newton steps on the slip directions go on at the final rule
 // while the residual falls; this many steps without halving the best residual is a stall.
