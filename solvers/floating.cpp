@@ -137,19 +137,24 @@ Eigen::VectorXd at(const Eigen::VectorXd& u, const std::vector<int>& dofs) {
 
 // ‖Rᵀ(f − Bᵀλ − Tᵀλ_T)‖∞ over the force scale: how far λ is from balancing the load on every
 // free mode (zero at a solution; with R orthonormal it never exceeds √n times the stationarity).
-double rigid_balance(const QuadraticProgram& qp, const Eigen::MatrixXd& R, const SolveResult& result) {
-  Eigen::VectorXd r = qp.f - qp.B.transpose() * result.lambda;
-  if (!qp.friction.empty() && result.lambda_t.size() == qp.friction.T.rows())
-    r -= qp.friction.T.transpose() * result.lambda_t;
-  const double F = force_scale(qp, result.u, result.lambda, result.lambda_t);
+double rigid_balance(const QuadraticProgram& qp, const Eigen::MatrixXd& R, const KOperations& K,
+                     const SolveResult& result) {
+  const Eigen::VectorXd Btl = qp.B.transpose() * result.lambda;
+  Eigen::VectorXd r = qp.f - Btl;
+  double F = force_scale(qp.f, K.times(result.u), Btl);  // K u summed over the parts, if any
+  if (!qp.friction.empty() && result.lambda_t.size() == qp.friction.T.rows()) {
+    const Eigen::VectorXd Ttl = qp.friction.T.transpose() * result.lambda_t;
+    r -= Ttl;
+    F = std::max(F, Ttl.cwiseAbs().maxCoeff());
+  }
   const double balance = (R.transpose() * r).cwiseAbs().maxCoeff();
   return F > 0 ? balance / F : balance;
 }
 
 // The stated choice for the free modes no active row sees (floating.hpp): u minus its component
 // along them, kept when the certificate still meets tol. Returns how many such modes there are.
-int take_smallest_norm(const QuadraticProgram& qp, const Eigen::MatrixXd& R, const LinearSolver& K_plus, double tol,
-                       SolveResult& result) {
+int take_smallest_norm(const QuadraticProgram& qp, const Eigen::MatrixXd& R, const KOperations& K,
+                       const LinearSolver* K_plus, double tol, SolveResult& result) {
   if (!qp.friction.empty()) return 0;
   std::vector<int> active;
   for (int i = 0; i < result.lambda.size(); ++i)
@@ -173,7 +178,7 @@ int take_smallest_norm(const QuadraticProgram& qp, const Eigen::MatrixXd& R, con
   const Eigen::MatrixXd D = R * unseen;  // orthonormal
   SolveResult moved = result;
   moved.u -= D * (D.transpose() * result.u);
-  const Certificate certificate = certify(qp, moved.u, moved.lambda, &K_plus);
+  const Certificate certificate = K.certify(moved.u, moved.lambda, Eigen::VectorXd(), K_plus);
   if (meets_tolerance(certificate, tol)) {
     result.u = moved.u;
     result.certificate = certificate;
@@ -317,7 +322,7 @@ std::optional<std::string> gross_slip(const QuadraticProgram& qp, const Eigen::M
 }  // namespace
 
 SolveResult solve_with_free_modes(const QuadraticProgram& qp, const Eigen::MatrixXd& R, const SolveOptions& options,
-                                  const DefiniteSolve& run) {
+                                  const KOperations& K, const DefiniteSolve& run) {
   Stopwatch clock;
   const std::vector<int> fixed = fixing_dofs(R);
   const int n = qp.n_dofs();
@@ -327,21 +332,30 @@ SolveResult solve_with_free_modes(const QuadraticProgram& qp, const Eigen::Matri
   // applies). Not the diagonal at F alone: a DOF that a whole rigid surface shares (model.hpp's
   // RigidSurface) may be picked, and its diagonal is the surface's — Hertz by force on a surface
   // turned by 30° then did not settle in 9 steps (5 with this mean; docs/extremes.md).
+  const Eigen::VectorXd K_diagonal = K.diagonal();  // summed over the parts, if any
   double diagonal = 0, weight = 0;
-  for (long j = 0; j < qp.K.outerSize(); ++j) {
+  for (long j = 0; j < K_diagonal.size(); ++j) {
     const double r2 = R.row(j).squaredNorm();
-    diagonal += r2 * std::abs(qp.K.coeff(j, j));
+    diagonal += r2 * std::abs(K_diagonal[j]);
     weight += r2;
   }
   diagonal = weight > 0 ? diagonal / weight : 0.0;
   double epsilon = kProximalRelative * diagonal;
-  if (!(epsilon > 0)) epsilon = kProximalRelative * infinity_norm(qp.K);
+  // Where the free modes move K has no stiffness at all: the scale of K elsewhere.
+  if (!(epsilon > 0))
+    epsilon = kProximalRelative *
+              (K.whole ? infinity_norm(qp.K) : (K_diagonal.size() > 0 ? K_diagonal.cwiseAbs().maxCoeff() : 0.0));
   if (!(epsilon > 0) || !std::isfinite(epsilon)) epsilon = 1.0;
 
   QuadraticProgram inner = qp;
   inner.null_space.resize(0, 0);
-  for (int j : fixed) inner.K.coeffRef(j, j) += epsilon;
-  inner.K.makeCompressed();
+  // K_ε's springs on F, in one process's part when K is held in parts (K.adds_springs).
+  const auto add_springs = [&inner, &fixed, &K](double stiffness) {
+    if (!K.adds_springs) return;
+    for (int j : fixed) inner.K.coeffRef(j, j) += stiffness;
+    inner.K.makeCompressed();
+  };
+  add_springs(epsilon);
 
   SolveOptions inner_options = options;
   inner_options.K_factor = nullptr;  // the caller's, if any, stands for K, not K_ε
@@ -350,13 +364,17 @@ SolveResult solve_with_free_modes(const QuadraticProgram& qp, const Eigen::Matri
 
   Timings timings;
   // K⁺ for the certificate: from the solver of K_ε the first step sets up, or (a backend that
-  // returns none, as ipopt) from a factorisation of K without F.
+  // returns none, as ipopt) from a factorisation of K without F — on a K held whole only; in
+  // parts the certificate then has no dual.
   std::shared_ptr<const LinearSolver> K_plus;
+  bool looked_for_K_plus = false;
   auto generalised = [&](const SolveResult& step) {
     Stopwatch setting_up;
-    K_plus = step.K_factor && step.K_factor->ok() && step.K_factor->size() == n
-                 ? std::make_shared<GeneralisedInverseOfShifted>(step.K_factor, fixed)
-                 : generalised_inverse(qp.K, fixed, linear_solver_options(qp, options));
+    looked_for_K_plus = true;
+    if (step.K_factor && step.K_factor->ok() && step.K_factor->size() == n)
+      K_plus = std::make_shared<GeneralisedInverseOfShifted>(step.K_factor, fixed);
+    else if (K.whole)
+      K_plus = generalised_inverse(qp.K, fixed, linear_solver_options(qp, options));
     timings.add("generalised_inverse", setting_up.seconds());
   };
 
@@ -376,8 +394,8 @@ SolveResult solve_with_free_modes(const QuadraticProgram& qp, const Eigen::Matri
     ++steps;
     iterations += result.iterations;
     timings.merge(result.timings);
-    if (!K_plus) generalised(result);
-    certificate = certify(qp, result.u, result.lambda, result.lambda_t, K_plus.get());
+    if (!looked_for_K_plus) generalised(result);
+    certificate = K.certify(result.u, result.lambda, result.lambda_t, K_plus.get());
     if (result.status != Status::Converged) {
       why = "proximal step " + std::to_string(steps) + " ended " + to_string(result.status) + ": " + result.message;
       break;
@@ -400,7 +418,7 @@ SolveResult solve_with_free_modes(const QuadraticProgram& qp, const Eigen::Matri
     Eigen::VectorXd ignored;
     if (stalled >= 3 && softenings < kProximalSoftenings && steps < kProximalMaxSteps &&
         !gross_slip(qp, R, fixed, last_move, result, ignored)) {
-      for (int j : fixed) inner.K.coeffRef(j, j) -= 0.9 * epsilon;
+      add_springs(-0.9 * epsilon);
       epsilon *= 0.1;
       ++softenings;
       stalled = 0;
@@ -429,12 +447,12 @@ SolveResult solve_with_free_modes(const QuadraticProgram& qp, const Eigen::Matri
   const bool certified = why.empty();
   std::optional<std::string> slip;
   int unseen = 0;
-  if (certified) unseen = take_smallest_norm(qp, R, *K_plus, options.tol, result);
+  if (certified) unseen = take_smallest_norm(qp, R, K, K_plus.get(), options.tol, result);
   result.timings = timings;
   result.timings.add("free_modes", clock.seconds());
   result.diagnostics["proximal_steps"] = steps;
   result.diagnostics["free_modes"] = static_cast<double>(R.cols());
-  result.diagnostics["rigid_balance"] = rigid_balance(qp, R, result);
+  result.diagnostics["rigid_balance"] = rigid_balance(qp, R, K, result);
   if (unseen > 0) result.diagnostics["undriven_modes"] = unseen;
   const std::string modes = std::to_string(R.cols()) + " free mode" + (R.cols() == 1 ? "" : "s") + " of K";
   if (certified) {

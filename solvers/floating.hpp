@@ -30,6 +30,7 @@
 
 #include "contactqp/linear_solver.hpp"
 #include "contactqp/qp.hpp"
+#include "solve_steps.hpp"
 
 namespace contactqp::detail {
 
@@ -63,8 +64,13 @@ using DefiniteSolve = std::function<SolveResult(const QuadraticProgram& qp, cons
 // result carries the certificate of the original QP (computed with the generalised inverse,
 // which is also its K_factor), Converged only when that certificate meets options.tol, and the
 // diagnostics "proximal_steps", "free_modes" and "rigid_balance" (‖Rᵀ(f − Bᵀλ − Tᵀλ_T)‖∞
-// relative to the force scale: the free modes' equilibrium).
+// relative to the force scale: the free modes' equilibrium). K applies qp's K (solve_steps.hpp):
+// on a problem held in parts (qp.K this process's part, R, f, B and g whole on every process)
+// every step is collective and every decision is taken alike on every process, from summed
+// products; the springs join the part of the process that K.adds_springs names. There the
+// generalised inverse comes only from the first step's solver of K_ε (a backend that returns
+// none leaves the certificate without its dual).
 SolveResult solve_with_free_modes(const QuadraticProgram& qp, const Eigen::MatrixXd& R, const SolveOptions& options,
-                                  const DefiniteSolve& run);
+                                  const KOperations& K, const DefiniteSolve& run);
 
 }  // namespace contactqp::detail

@@ -132,10 +132,15 @@ KOperations whole_K(const QuadraticProgram& qp) {
   KOperations K;
   K.times = [&qp](const VectorXd& u) { return K_times(qp, u); };
   K.diagonal = [&qp]() { return VectorXd(qp.K.diagonal()); };
-  K.certify = [&qp](const SolveResult& result) {
-    return contactqp::certify(qp, result.u, result.lambda, result.lambda_t, result.K_factor.get());
+  K.certify = [&qp](const VectorXd& u, const VectorXd& lambda, const VectorXd& lambda_t, const LinearSolver* K_factor) {
+    return contactqp::certify(qp, u, lambda, lambda_t, K_factor);
   };
+  K.like = [](const QuadraticProgram& other) { return whole_K(other); };
   return K;
+}
+
+Certificate certify_result(const KOperations& K, const SolveResult& result) {
+  return K.certify(result.u, result.lambda, result.lambda_t, result.K_factor.get());
 }
 
 namespace {
@@ -152,8 +157,10 @@ bool beyond_any_stiffness(const QuadraticProgram& qp, const VectorXd& u) {
 Eigen::MatrixXd certify_status(const QuadraticProgram& qp, const SolveOptions& options, const KOperations& K,
                                SolveResult& result, const Certificate& certificate, const Eigen::MatrixXd& known) {
   apply_certificate(result, certificate, options.tol);
-  if (!K.whole) return {};
-  const bool beyond = beyond_any_stiffness(qp, result.u);
+  // On a K held in parts only a QP that carries its null space is searched (the evidence needs
+  // only f, B, g and R, whole and alike on every process), and never a length judged against K.
+  if (!K.whole && known.cols() == 0) return {};
+  const bool beyond = K.whole && beyond_any_stiffness(qp, result.u);
   if (result.status == Status::Converged && !beyond) return {};
   if (beyond && result.status != Status::Converged) {
     // A last iterate that long is no answer to show (a free motion, or a solve that broke down).
@@ -162,7 +169,7 @@ Eigen::MatrixXd certify_status(const QuadraticProgram& qp, const SolveOptions& o
     result.u.setZero();
     result.lambda.setZero();
     result.lambda_t.setZero();
-    result.certificate = K.certify(result);
+    result.certificate = certify_result(K, result);
   }
 
   Stopwatch clock;
@@ -192,7 +199,7 @@ Eigen::MatrixXd certify_status(const QuadraticProgram& qp, const SolveOptions& o
     result.u.setZero();
     result.lambda.setZero();
     result.lambda_t.setZero();
-    result.certificate = K.certify(result);
+    result.certificate = certify_result(K, result);
   }
   result.timings.add("diagnose", clock.seconds());
   return R;
@@ -251,7 +258,7 @@ void tighten_once(const QuadraticProgram& qp, const SolveOptions& used, const KO
   tighter.initial = {result.u, result.lambda, result.lambda_t};
   if (result.K_factor) tighter.K_factor = result.K_factor;
   SolveResult again = run_backend(qp, tighter, K, backend_solve);
-  const Certificate second = K.certify(again);
+  const Certificate second = certify_result(K, again);
   // The second run's own test is at the tighter tol, which it may not reach (Ipopt's restoration
   // failing at 1e-12): its answer counts when the certificate accepts it at the caller's tol.
   if (!meets_tolerance(second, used.tol)) {
@@ -293,12 +300,13 @@ SolveResult solve_with(const QuadraticProgram& qp, const SolveOptions& options, 
   }
   const SolveOptions& used = raised ? limited : options;
 
-  // A definite QP of the proximal steps on K's free modes (floating.hpp), run like the QP itself.
-  const DefiniteSolve definite = [&backend_solve](const QuadraticProgram& q, const SolveOptions& o) {
-    return run_backend(q, o, whole_K(q), backend_solve);
+  // A definite QP of the proximal steps on K's free modes (floating.hpp), run like the QP itself
+  // (its K held as this one's: whole, or in the same parts).
+  const DefiniteSolve definite = [&backend_solve, &K](const QuadraticProgram& q, const SolveOptions& o) {
+    return run_backend(q, o, K.like(q), backend_solve);
   };
-  // A QP that carries K's null space is solved on its free modes from the start (one process).
-  const bool free_modes = qp.null_space.cols() > 0 && K.whole;
+  // A QP that carries K's null space is solved on its free modes from the start.
+  const bool free_modes = qp.null_space.cols() > 0 && K.like;
   const Eigen::MatrixXd R = free_modes ? orthonormal_null_space(qp.null_space, "qp.null_space") : Eigen::MatrixXd();
 
   SolveResult result;
@@ -306,16 +314,16 @@ SolveResult solve_with(const QuadraticProgram& qp, const SolveOptions& options, 
   LinearSolverStatistics statistics;
   double certify_seconds = 0;
   if (free_modes) {
-    result = solve_with_free_modes(qp, R, used, definite);  // certified inside, with K's generalised inverse
+    result = solve_with_free_modes(qp, R, used, K, definite);  // certified inside, with K's generalised inverse
     result.null_space_dimension = static_cast<int>(R.cols());
     certificate = *result.certificate;
-    statistics = result.K_factor->statistics();
+    statistics = result.K_factor ? result.K_factor->statistics() : LinearSolverStatistics{};
   } else {
     result = run_backend(qp, used, K, backend_solve);
     // The solver of K's statistics count the backend's solves, not the certificate's.
     statistics = result.K_factor ? result.K_factor->statistics() : LinearSolverStatistics{};
     Stopwatch certifying;
-    certificate = K.certify(result);
+    certificate = certify_result(K, result);
     certify_seconds = certifying.seconds();
     tighten_once(qp, used, K, backend_solve, result, certificate);
     if (result.diagnostics.count("tightened_tol") && result.K_factor) statistics = result.K_factor->statistics();
@@ -328,7 +336,7 @@ SolveResult solve_with(const QuadraticProgram& qp, const SolveOptions& options, 
   const bool no_answer = result.status == Status::Infeasible || result.status == Status::Unbounded;
   if (!free_modes && !no_answer && found.cols() > 0 &&
       (result.status != Status::Converged || beyond_any_stiffness(qp, result.u))) {
-    SolveResult held = solve_with_free_modes(qp, found, used, definite);
+    SolveResult held = solve_with_free_modes(qp, found, used, K, definite);
     if (held.status == Status::Converged) {
       held.null_space_dimension = static_cast<int>(found.cols());
       held.message = "K is only positive semidefinite (" + std::to_string(found.cols()) +

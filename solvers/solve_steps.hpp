@@ -14,14 +14,26 @@ namespace contactqp::detail {
 struct KOperations {
   std::function<VectorXd(const VectorXd& u)> times;  // K u
   std::function<VectorXd()> diagonal;                // K's diagonal
-  // The certificate of a result (certificate.hpp), collective where K's products are: solve()
-  // certifies every answer once and its status claims no more than that.
-  std::function<Certificate(const SolveResult& result)> certify;
+  // The certificate of (u, λ, λ_T) with K_factor for θ (certificate.hpp; null: no dual),
+  // collective where K's products are: solve() certifies every answer once and its status
+  // claims no more than that.
+  std::function<Certificate(const VectorXd& u, const VectorXd& lambda, const VectorXd& lambda_t,
+                            const LinearSolver* K_factor)>
+      certify;
   // Whether the QP is whole on this process: only then does solve() look for the evidence of a
-  // problem without solution (no_solution.hpp) when the certificate rejects an answer.
+  // problem without solution (no_solution.hpp) when the certificate rejects an answer, and only
+  // then may a step factorise K itself.
   bool whole = true;
+  // The same operations for another QP held like this one (a K this process holds the same part
+  // of): the proximal steps on K's free modes (floating.hpp) solve QPs whose K is K_ε.
+  std::function<KOperations(const QuadraticProgram& qp)> like;
+  // Whether this process adds the proximal steps' springs to its part of K: the parts sum to
+  // K, so exactly one process does (every process of a whole K).
+  bool adds_springs = true;
 };
 KOperations whole_K(const QuadraticProgram& qp);  // refers to qp: keep it alive
+// K.certify of a result, with its own K_factor.
+Certificate certify_result(const KOperations& K, const SolveResult& result);
 
 // Runs the backend on a validated (and scaled) problem.
 using BackendSolve = std::function<SolveResult(const QuadraticProgram& qp, const SolveOptions& options)>;

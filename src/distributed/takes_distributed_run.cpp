@@ -11,15 +11,15 @@ namespace contactqp::detail {
 
 // Whether run_scene() goes this way: the petsc backend (with contact, or --no-contact: one
 // linear solve by the same KSP and hierarchy, the contact solve's reference) on a one-body
-// scene, under mpirun or with options.distributed (the CLI's default). On one process only
-// what this path models goes this way: a frictionless scene, with or without load steps; the
-// others keep the one-process path (docs/architecture.md, "Which path a scene takes"). Under
-// mpirun they come here and are refused below, since the one-process path would hold
-// everything on every rank.
+// scene that this path models, under mpirun or with options.distributed (the CLI's default): a
+// frictionless scene, with or without load steps, held by prescribed displacements. The others
+// keep the one-process path (docs/architecture.md, "Which path a scene takes"), which under
+// mpirun holds the mesh and model on every rank and K in rank shares (the problem in parts, as
+// for several bodies) rather than refusing them.
 bool takes_distributed_run(const Scene& scene, const RunOptions& options) {
   if (scene.solver.backend != Backend::Petsc || !scene.bodies.empty() || !scene.pairs.empty()) return false;
-  if (process_count() > 1) return true;
-  if (!options.distributed || scene.friction_law() != FrictionLaw::None) return false;
+  if (process_count() <= 1 && !options.distributed) return false;
+  if (scene.friction_law() != FrictionLaw::None) return false;
   // A body loaded by forces alone may be one that only its contacts hold, which the one-process
   // path solves on its free motions (docs/extremes.md) and the distributed model refuses.
   const auto displaced = [](const LoadSpec& load) { return load.is<DisplacementLoad>(); };

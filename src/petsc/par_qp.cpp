@@ -31,11 +31,46 @@ ParQuadraticProgram assemble_par_qp(Model& model, const RankShare& share) {
   return qp;
 }
 
-VectorXd K_times(const ParQuadraticProgram& qp, const VectorXd& u) {
-  VectorXd Ku = qp.share.K * u;
-  if (qp.ranks > 1) detail::sum_over_ranks(Ku.data(), Ku.size());
+namespace {
+
+// K u for a share of K (whole on one rank): the ranks' products summed (collective).
+VectorXd share_times(const QuadraticProgram& share, int ranks, const VectorXd& u) {
+  VectorXd Ku = share.K * u;
+  if (ranks > 1) detail::sum_over_ranks(Ku.data(), Ku.size());
   return Ku;
 }
+
+Certificate certify_share(const QuadraticProgram& share, int ranks, const VectorXd& u, const VectorXd& lambda,
+                          const VectorXd& lambda_t, const LinearSolver* K_factor) {
+  if (ranks <= 1) return certify(share, u, lambda, lambda_t, K_factor);
+  // Every vector but K u is whole on every rank (T and λ_T too): the terms need no other sum.
+  return certify_given_Ku(share, share_times(share, ranks, u), u, lambda, lambda_t, K_factor);
+}
+
+// How solve()'s steps apply K held in shares (solve_steps.hpp): `share` this rank's, kept alive
+// by the caller. The proximal steps' springs (floating.hpp) join rank 0's share.
+detail::KOperations shares_K(const QuadraticProgram& share, int rank, int ranks) {
+  detail::KOperations K;
+  K.times = [&share, ranks](const VectorXd& u) { return share_times(share, ranks, u); };
+  K.diagonal = [&share, ranks]() {
+    // A rank's share holds part of each diagonal entry at its boundary: the ranks' sum is K's.
+    VectorXd diagonal = share.K.diagonal();
+    if (ranks > 1) detail::sum_over_ranks(diagonal.data(), diagonal.size());
+    return diagonal;
+  };
+  K.certify = [&share, ranks](const VectorXd& u, const VectorXd& lambda, const VectorXd& lambda_t,
+                              const LinearSolver* K_factor) {
+    return certify_share(share, ranks, u, lambda, lambda_t, K_factor);
+  };
+  K.whole = ranks <= 1;
+  K.like = [rank, ranks](const QuadraticProgram& other) { return shares_K(other, rank, ranks); };
+  K.adds_springs = rank == 0;
+  return K;
+}
+
+}  // namespace
+
+VectorXd K_times(const ParQuadraticProgram& qp, const VectorXd& u) { return share_times(qp.share, qp.ranks, u); }
 
 SolveResult solve(const ParQuadraticProgram& qp, const SolveOptions& options) {
   if (qp.ranks > 1 && options.backend != Backend::Petsc)
@@ -43,21 +78,10 @@ SolveResult solve(const ParQuadraticProgram& qp, const SolveOptions& options) {
                      "= " + to_string(options.backend) +
                          ": K is assembled in shares over the MPI ranks, which only the petsc backend solves");
   const detail::MatrixLayout layout{qp.ranks > 1, qp.distributed_row};
-  detail::KOperations K;
-  K.times = [&qp](const VectorXd& u) { return K_times(qp, u); };
-  K.diagonal = [&qp]() {
-    // A rank's share holds part of each diagonal entry at its boundary: the ranks' sum is K's.
-    VectorXd diagonal = qp.share.K.diagonal();
-    if (qp.ranks > 1) detail::sum_over_ranks(diagonal.data(), diagonal.size());
-    return diagonal;
-  };
-  K.certify = [&qp](const SolveResult& result) {
-    return certify(qp, result.u, result.lambda, result.lambda_t, result.K_factor.get());
-  };
-  K.whole = qp.ranks <= 1;
-  return detail::solve_with(qp.share, options, K, [&layout](const QuadraticProgram& scaled, const SolveOptions& o) {
-    return detail::solve_bound_form(scaled, layout, o);
-  });
+  return detail::solve_with(qp.share, options, shares_K(qp.share, qp.rank, qp.ranks),
+                            [&layout](const QuadraticProgram& scaled, const SolveOptions& o) {
+                              return detail::solve_bound_form(scaled, layout, o);
+                            });
 }
 
 Certificate certify(const ParQuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda,
@@ -67,9 +91,7 @@ Certificate certify(const ParQuadraticProgram& qp, const VectorXd& u, const Vect
 
 Certificate certify(const ParQuadraticProgram& qp, const VectorXd& u, const VectorXd& lambda, const VectorXd& lambda_t,
                     const LinearSolver* K_factor) {
-  if (qp.ranks <= 1) return certify(qp.share, u, lambda, lambda_t, K_factor);
-  // Every vector but K u is whole on every rank (T and λ_T too): the terms need no other sum.
-  return certify_given_Ku(qp.share, K_times(qp, u), u, lambda, lambda_t, K_factor);
+  return certify_share(qp.share, qp.ranks, u, lambda, lambda_t, K_factor);
 }
 
 namespace detail {

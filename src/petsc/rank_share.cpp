@@ -36,14 +36,19 @@ std::vector<int> distributed_rows(const Model& model, int ranks) {
   const std::vector<int> part = partition_graph(offsets, neighbours, ranks);
   if (part.empty()) return {};
   const int dim = model.dim;
-  // Counting sort of the free DOFs by the part of their node, stable within a part.
+  // Each free column's part: its first DOF's node's. A rigid surface's DOFs (model.hpp's
+  // RigidSurface) share one column, which gets one row.
+  std::vector<int> part_of_column(model.n_free, -1);
+  for (std::size_t dof = 0; dof < model.free_index.size(); ++dof) {
+    const int column = model.free_index[dof];
+    if (column >= 0 && part_of_column[column] < 0) part_of_column[column] = part[dof / dim];
+  }
+  // Counting sort of the free columns by their part, stable within a part.
   std::vector<int> start(ranks + 1, 0);
-  for (std::size_t dof = 0; dof < model.free_index.size(); ++dof)
-    if (model.free_index[dof] >= 0) ++start[part[dof / dim] + 1];
+  for (int p : part_of_column) ++start[p + 1];
   for (int p = 0; p < ranks; ++p) start[p + 1] += start[p];
   std::vector<int> row(model.n_free);
-  for (std::size_t dof = 0; dof < model.free_index.size(); ++dof)
-    if (model.free_index[dof] >= 0) row[model.free_index[dof]] = start[part[dof / dim]]++;
+  for (int column = 0; column < model.n_free; ++column) row[column] = start[part_of_column[column]]++;
   return row;
 }
 

@@ -65,10 +65,6 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   // needs K whole.
   const std::shared_ptr<detail::ProblemInParts> in_parts =
       options.no_contact ? nullptr : detail::assemble_in_parts(*model, scene.solver);
-  // The free modes' proximal steps need K whole (solvers/floating.cpp): not on a problem in parts yet.
-  if (in_parts && model->free_modes.cols() > 0)
-    detail::refuse_held_by_contact_on_several_processes(scene.solver.backend,
-                                                        describe_free_motion(*model, model->free_modes.col(0)));
   // The whole QP, which load steps change step by step (loads, gaps, friction offset).
   const std::shared_ptr<QuadraticProgram> whole =
       in_parts ? nullptr : std::make_shared<QuadraticProgram>(assemble_qp(*model));
