@@ -141,7 +141,8 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
     report.contact.max_pressure =
         std::max({report.contact.max_pressure, pair.max_nodal_pressure, pair.face_max_pressure});
   report.timings.add("postprocess", clock.seconds());
-  if (!in_parts) add_error_estimate(scene, *model, *qp, report);
+  // From the model, u, λ, B, g and T: whole on every rank of a problem in parts too.
+  add_error_estimate(scene, *model, *qp, report);
 
   report.warnings = model->warnings;
   report.warnings.insert(report.warnings.end(), report.result.warnings.begin(), report.result.warnings.end());
