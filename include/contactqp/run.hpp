@@ -35,6 +35,11 @@ struct RunOptions {
   // report whole on one process: result.u, the model and the QP, which a distributed run's
   // report does not hold (it holds the contact surface gathered).
   bool distributed = false;
+  // Under mpirun, hold the mesh and the model whole on every process even where the distributed
+  // run models the scene: the petsc backend then solves the problem in parts (K in rank shares),
+  // and the report holds u, the model and the QP whole on every process. An adaptive run
+  // (docs/adaptive.md) plans each next mesh from them. Takes precedence over `distributed`.
+  bool whole = false;
   // Called as each phase starts: "mesh" (with the model), "assemble", "solve", "certify",
   // "postprocess". For a progress display; empty: not called.
   std::function<void(const char* phase)> on_phase;

@@ -18,7 +18,7 @@ namespace contactqp::detail {
 // for several bodies) rather than refusing them.
 bool takes_distributed_run(const Scene& scene, const RunOptions& options) {
   if (scene.solver.backend != Backend::Petsc || !scene.bodies.empty() || !scene.pairs.empty()) return false;
-  if (process_count() <= 1 && !options.distributed) return false;
+  if (options.whole || (process_count() <= 1 && !options.distributed)) return false;
   if (scene.friction_law() != FrictionLaw::None) return false;
   // A body loaded by forces alone may be one that only its contacts hold, which the one-process
   // path solves on its free motions (docs/extremes.md) and the distributed model refuses.

@@ -21,6 +21,8 @@ ParQuadraticProgram assemble_par_qp(Model& model, const RankShare& share) {
   if (!share.distributed_row.empty() && static_cast<int>(share.distributed_row.size()) != model.n_free)
     throw InputError("RankShare.distributed_row", "has " + std::to_string(share.distributed_row.size()) +
                                                       " entries for " + std::to_string(model.n_free) + " DOFs");
+  // The rows the ranks partition for themselves need one model on every rank.
+  if (share.distributed_row.empty()) detail::check_same_model_on_every_rank(model);
   qp.distributed_row =
       share.distributed_row.empty() ? detail::distributed_rows(model, share.ranks) : share.distributed_row;
   if (qp.distributed_row.empty())

@@ -1,8 +1,13 @@
-// distributed_rows() and owned_elements() (rank_share.hpp).
+// distributed_rows(), check_same_model_on_every_rank() and owned_elements() (rank_share.hpp).
 #include "rank_share.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include "contactqp/mesh.hpp"
 #include "fe/node_elements.hpp"
+#include "mpi.hpp"
 
 namespace contactqp::detail {
 namespace {
@@ -50,6 +55,33 @@ std::vector<int> distributed_rows(const Model& model, int ranks) {
   std::vector<int> row(model.n_free);
   for (int column = 0; column < model.n_free; ++column) row[column] = start[part_of_column[column]]++;
   return row;
+}
+
+void check_same_model_on_every_rank(const Model& model) {
+  const int ranks = mpi_size();
+  if (ranks <= 1) return;
+  const Mesh& mesh = model.mesh;
+  double checksum = 0;
+  for (int v = 0; v < mesh.n_nodes(); ++v)
+    for (int c = 0; c < mesh.dim; ++c) checksum += (1 + (v + c) % 7) * mesh.nodes[v][c];
+  const double mine[4] = {static_cast<double>(mesh.n_nodes()), static_cast<double>(mesh.n_elements()),
+                          static_cast<double>(model.n_free), checksum};
+  // The ranks' sum of each value and of its square: all alike exactly when the spread is nil.
+  double sums[8];
+  for (int k = 0; k < 4; ++k) {
+    sums[k] = mine[k];
+    sums[4 + k] = mine[k] * mine[k];
+  }
+  sum_over_ranks(sums, 8);
+  for (int k = 0; k < 4; ++k) {
+    const double mean = sums[k] / ranks, spread = sums[4 + k] / ranks - mean * mean;
+    if (spread > 1e-20 * std::max(1.0, mean * mean))
+      throw std::runtime_error(
+          "the MPI ranks built different models of the scene (nodes, elements, DOFs or coordinates differ; this "
+          "rank: " +
+          std::to_string(mesh.n_nodes()) + " nodes, " + std::to_string(mesh.n_elements()) + " elements, " +
+          std::to_string(model.n_free) + " DOFs): each rank meshes the scene itself, which must give one mesh");
+  }
 }
 
 std::vector<char> owned_elements(const Model& model, const RankShare& share, const std::vector<int>& distributed_row) {

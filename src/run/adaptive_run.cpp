@@ -8,7 +8,6 @@
 #include "adaptive_warm_start.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/number_format.hpp"
-#include "contactqp/processes.hpp"
 #include "contactqp/run.hpp"
 #include "run/adaptive_run.hpp"
 
@@ -35,8 +34,6 @@ std::string percent(double fraction) { return number(100 * fraction, 3) + "%"; }
 
 void check_adaptive_scene(Scene& scene) {
   const AdaptSpec& spec = *scene.adapt;
-  if (process_count() > 1)
-    throw InputError("adapt", "is not run under mpirun yet: run the adaptive scene on one process");
   if (!scene.estimate) throw InputError("estimate", "= false: an adaptive run (\"adapt\") needs the error estimate");
   bool generated = false;
   for (const BodySpec* body : scene_bodies(scene)) generated = generated || body->shape != "mesh";
@@ -81,10 +78,13 @@ RunReport run_adaptive(const Scene& scene, const RunOptions& options) {
   AdaptiveRun run;
   run.spec = *scene.adapt;
   current.adapt.reset();
-  // Each cycle on one process, whole: the estimate and the model it plans from are the
-  // one-process run's.
+  // Each cycle whole on every process: the estimate and the model it plans from are the
+  // one-process run's. Under mpirun every rank runs the same cycles (the petsc backend on the
+  // problem in parts, K in rank shares; the other backends replicated) and meshes the same
+  // next mesh from the same indicators; assemble_par_qp() checks that the ranks' meshes agree.
   RunOptions cycle_options = options;
   cycle_options.distributed = false;
+  cycle_options.whole = true;
 
   std::vector<double> max_size;
   for (const BodySpec* body : scene_bodies(current)) max_size.push_back(body->shape == "mesh" ? 0 : body->mesh.size);

@@ -81,8 +81,8 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   phase("solve");
   if (options.no_contact)
     report.result = solve_without_contact(*qp, scene.solver);
-  else if (in_parts && scene.steps.empty())
-    report.result = in_parts->solve(scene.solver);
+  else if (in_parts && scene.steps.empty())  // the start reads the model and B, whole on every rank
+    report.result = in_parts->solve(with_initial_guess(scene.solver, options, *model, *qp));
   else if (in_parts)  // each step changes the part's f, g and friction offset, not its K
     report.result = detail::solve_load_steps_with(
         *model, in_parts->part_to_step(), scene, report.options, &report.steps,
