@@ -11,7 +11,7 @@ import json
 import os
 import sys
 
-from checks import MPI_ENV, Checks, run
+from checks import MPI_ENV, Checks, remove_stale, run
 
 ONE_BODY = {
     "model": "plane_strain", "material": {"E": 1.0, "nu": 0.3},
@@ -58,9 +58,7 @@ def main(cli, mpiexec, workdir, ranks="2"):
         with open(path, "w") as f:
             json.dump(scene, f)
         mine, theirs = os.path.join(workdir, name + ".mpirun.json"), os.path.join(workdir, name + ".one.json")
-        for stale in (mine, theirs):
-            if os.path.exists(stale):
-                os.remove(stale)
+        remove_stale(mine, theirs)
         code, out, err = run([mpiexec, "-n", ranks, "--oversubscribe", cli, "solve", path, "--quiet", "--json", mine],
                              MPI_ENV)
         code_one, out, err_one = run([cli, "solve", path, "--quiet", "--json", theirs], MPI_ENV)

@@ -18,7 +18,7 @@ import sys
 
 import numpy
 
-from checks import MPI_ENV, Checks, run
+from checks import MPI_ENV, Checks, remove_stale, run
 
 TOL = 1e-8
 # What the petsc backend does not solve on several processes yet, and the words of its line:
@@ -111,9 +111,7 @@ def no_equilibrium(cli, mpiexec, scenes, workdir, ranks, env, check):
         with open(derived, "w") as f:
             json.dump(scene, f)
         mine, theirs = derived + ".mpirun.json", derived + ".one.json"
-        for stale in (mine, theirs):
-            if os.path.exists(stale):
-                os.remove(stale)
+        remove_stale(mine, theirs)
         code, out, err = run([mpiexec, "-n", ranks, "--oversubscribe", cli, "solve", derived, "--backend", "petsc",
                               "--tol", "1e-10", "--json", mine], env)
         code_one, out_one, err_one = run([cli, "solve", derived, "--backend", "active_set", "--tol", "1e-10",
@@ -154,9 +152,7 @@ def main(cli, mpiexec, scenes, workdir, ranks="2", *skip):
             with open(scene, "w") as f:
                 json.dump(coarser, f)
         mine, theirs = os.path.join(workdir, name + ".mpirun.json"), os.path.join(workdir, name + ".one.json")
-        for stale in (mine, theirs):
-            if os.path.exists(stale):
-                os.remove(stale)
+        remove_stale(mine, theirs)
         code, out, err = run([mpiexec, "-n", ranks, "--oversubscribe", cli, "solve", scene, "--backend", "petsc",
                               "--tol", "1e-10", "--quiet", "--json", mine], env)
         lines = [line for line in err.splitlines() if line.startswith("contactqp")]
@@ -199,9 +195,7 @@ def main(cli, mpiexec, scenes, workdir, ranks="2", *skip):
     mine, theirs = os.path.join(workdir, "two-bodies.mpirun.json"), os.path.join(workdir, "two-bodies.one.json")
     with open(derived, "w") as f:
         json.dump(scene, f)
-    for stale in (mine, theirs):
-        if os.path.exists(stale):
-            os.remove(stale)
+    remove_stale(mine, theirs)
     code, out, err = run([mpiexec, "-n", ranks, "--oversubscribe", cli, "solve", derived, "--backend", "petsc",
                           "--tol", "1e-10", "--quiet", "--json", mine], env)
     check(code == 0, "two bodies with friction, no steps: solved on %s ranks (exit %d) %s"

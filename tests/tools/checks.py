@@ -37,6 +37,13 @@ LAUNCHER_NAMES = ("mpirun", "mpiexec", "orterun")
 LSAN_TRACER_CRASH = "LeakSanitizer has encountered a fatal error"
 
 
+def remove_stale(*paths):
+    """Removes earlier runs' outputs, so that a check reads only what this run wrote."""
+    for path in paths:
+        if os.path.exists(path):
+            os.remove(path)
+
+
 def is_launcher(command):
     return os.path.basename(command[0]).split(".")[0] in LAUNCHER_NAMES
 
