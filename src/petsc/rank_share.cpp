@@ -66,22 +66,15 @@ void check_same_model_on_every_rank(const Model& model) {
     for (int c = 0; c < mesh.dim; ++c) checksum += (1 + (v + c) % 7) * mesh.nodes[v][c];
   const double mine[4] = {static_cast<double>(mesh.n_nodes()), static_cast<double>(mesh.n_elements()),
                           static_cast<double>(model.n_free), checksum};
-  // The ranks' sum of each value and of its square: all alike exactly when the spread is nil.
-  double sums[8];
-  for (int k = 0; k < 4; ++k) {
-    sums[k] = mine[k];
-    sums[4 + k] = mine[k] * mine[k];
-  }
-  sum_over_ranks(sums, 8);
-  for (int k = 0; k < 4; ++k) {
-    const double mean = sums[k] / ranks, spread = sums[4 + k] / ranks - mean * mean;
-    if (spread > 1e-20 * std::max(1.0, mean * mean))
-      throw std::runtime_error(
-          "the MPI ranks built different models of the scene (nodes, elements, DOFs or coordinates differ; this "
-          "rank: " +
-          std::to_string(mesh.n_nodes()) + " nodes, " + std::to_string(mesh.n_elements()) + " elements, " +
-          std::to_string(model.n_free) + " DOFs): each rank meshes the scene itself, which must give one mesh");
-  }
+  // Every rank's values, each in its own slots (the others add zeros: the sum is exact).
+  std::vector<double> all(4 * static_cast<std::size_t>(ranks), 0.0);
+  std::copy(mine, mine + 4, all.begin() + 4 * mpi_rank());
+  sum_over_ranks(all.data(), static_cast<long>(all.size()));
+  if (!std::equal(all.begin(), all.end() - 4, all.begin() + 4))
+    throw std::runtime_error(
+        "the MPI ranks built different models of the scene (nodes, elements, DOFs or coordinates differ; this rank: " +
+        std::to_string(mesh.n_nodes()) + " nodes, " + std::to_string(mesh.n_elements()) + " elements, " +
+        std::to_string(model.n_free) + " DOFs): each rank meshes the scene itself, which must give one mesh");
 }
 
 std::vector<char> owned_elements(const Model& model, const RankShare& share, const std::vector<int>& distributed_row) {

@@ -20,7 +20,7 @@ std::vector<int> distributed_rows(const Model& model, int ranks);
 // Throws on every rank when the ranks' models differ (each rank meshed the scene itself: the
 // same input gives the same mesh, and a different one would leave the collective steps waiting
 // on different sizes or sum shares of different K's): nodes, elements, free DOFs and a checksum
-// of the coordinates agree to round-off. Collective; nothing to check on one process.
+// of the coordinates agree exactly. Collective; nothing to check on one process.
 void check_same_model_on_every_rank(const Model& model);
 
 // 1 for each element this rank adds to K: all of them for one rank; else those whose first
