@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <queue>
 #include <stdexcept>
+#include <utility>
 
 namespace contactqp::detail {
 
@@ -20,55 +22,126 @@ PointLocator::PointLocator(int dim, std::vector<Eigen::Vector3d> vertices, std::
     for (int k = 0; k < dim_; ++k) edges.col(k) = vertices_[s[k + 1]] - vertices_[s[0]];
     inverse_.push_back(edges.inverse());
   }
-  low_ = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
-  Eigen::Vector3d high = -low_;
-  for (const Eigen::Vector3d& v : vertices_) {
-    low_ = low_.cwiseMin(v);
-    high = high.cwiseMax(v);
-  }
-  for (const Box& box : boxes) {
-    low_ = low_.cwiseMin(box.low);
-    high = high.cwiseMax(box.high);
-  }
-  // About one simplex per cell.
-  const double extent = (high - low_).head(dim_).maxCoeff();
-  const double target = extent / std::max(1.0, std::pow(static_cast<double>(simplices_.size()), 1.0 / dim_));
-  for (int k = 0; k < 3; ++k) {
-    cells_[k] = k < dim_ ? std::clamp(static_cast<int>(std::ceil((high[k] - low_[k]) / target)), 1, 4096) : 1;
-    cell_size_[k] = k < dim_ ? std::max((high[k] - low_[k]) / cells_[k], 1e-300) : 1.0;
-  }
-  const std::size_t n_cells = static_cast<std::size_t>(cells_[0]) * cells_[1] * cells_[2];
-  // Two passes: count, then fill.
-  std::vector<int> count(n_cells + 1, 0);
-  auto for_cells = [&](int simplex, auto&& visit) {
-    const std::array<int, 4>& s = simplices_[simplex];
-    Eigen::Vector3d lo = vertices_[s[0]], hi = lo;
+  // Each simplex's box (its vertices', widened to the caller's).
+  const int n = static_cast<int>(simplices_.size());
+  boxes_.resize(n);
+  Eigen::Vector3d all_low = Eigen::Vector3d::Constant(std::numeric_limits<double>::max()), all_high = -all_low;
+  for (int s = 0; s < n; ++s) {
+    Box& box = boxes_[s];
+    box.low = box.high = vertices_[simplices_[s][0]];
     for (int k = 1; k <= dim_; ++k) {
-      lo = lo.cwiseMin(vertices_[s[k]]);
-      hi = hi.cwiseMax(vertices_[s[k]]);
+      box.low = box.low.cwiseMin(vertices_[simplices_[s][k]]);
+      box.high = box.high.cwiseMax(vertices_[simplices_[s][k]]);
     }
     if (!boxes.empty()) {
-      lo = lo.cwiseMin(boxes[simplex].low);
-      hi = hi.cwiseMax(boxes[simplex].high);
+      box.low = box.low.cwiseMin(boxes[s].low);
+      box.high = box.high.cwiseMax(boxes[s].high);
     }
-    const std::array<int, 3> a = cell_of(lo), b = cell_of(hi);
-    for (int i = a[0]; i <= b[0]; ++i)
-      for (int j = a[1]; j <= b[1]; ++j)
-        for (int l = a[2]; l <= b[2]; ++l) visit((static_cast<std::size_t>(l) * cells_[1] + j) * cells_[0] + i);
+    all_low = all_low.cwiseMin(box.low);
+    all_high = all_high.cwiseMax(box.high);
+  }
+  const auto low = [&](int s) -> const Eigen::Vector3d& { return boxes_[s].low; };
+  const auto high = [&](int s) -> const Eigen::Vector3d& { return boxes_[s].high; };
+  slack_ = 1e-12 * std::max((all_high - all_low).maxCoeff(), 1e-300);
+  // The hierarchy, top down: each node's simplices split at the median of their centres along
+  // the longest side of the centres' box (a balanced tree: depth about log2(n / kLeaf)).
+  constexpr int kLeaf = 4;
+  order_.resize(n);
+  for (int s = 0; s < n; ++s) order_[s] = s;
+  nodes_.reserve(2 * (n / kLeaf + 1));
+  nodes_.emplace_back();
+  struct Range {
+    int node, first, count;
   };
-  const int n_simplices = static_cast<int>(simplices_.size());
-  for (int s = 0; s < n_simplices; ++s) for_cells(s, [&](std::size_t c) { ++count[c + 1]; });
-  for (std::size_t c = 0; c < n_cells; ++c) count[c + 1] += count[c];
-  cell_start_ = count;
-  cell_simplices_.resize(count.back());
-  for (int s = 0; s < n_simplices; ++s) for_cells(s, [&](std::size_t c) { cell_simplices_[count[c]++] = s; });
+  std::vector<Range> pending = {{0, 0, n}};
+  while (!pending.empty()) {
+    const Range r = pending.back();
+    pending.pop_back();
+    Eigen::Vector3d box_low = low(order_[r.first]), box_high = high(order_[r.first]);
+    Eigen::Vector3d centre_low = 0.5 * (box_low + box_high), centre_high = centre_low;
+    for (int k = r.first + 1; k < r.first + r.count; ++k) {
+      const int s = order_[k];
+      box_low = box_low.cwiseMin(low(s));
+      box_high = box_high.cwiseMax(high(s));
+      const Eigen::Vector3d centre = 0.5 * (low(s) + high(s));
+      centre_low = centre_low.cwiseMin(centre);
+      centre_high = centre_high.cwiseMax(centre);
+    }
+    nodes_[r.node].low = box_low;
+    nodes_[r.node].high = box_high;
+    if (r.count <= kLeaf) {
+      nodes_[r.node].first = r.first;
+      nodes_[r.node].count = r.count;
+      continue;
+    }
+    int axis = 0;
+    for (int k = 1; k < dim_; ++k)
+      if (centre_high[k] - centre_low[k] > centre_high[axis] - centre_low[axis]) axis = k;
+    const int middle = r.first + r.count / 2;
+    std::nth_element(order_.begin() + r.first, order_.begin() + middle, order_.begin() + r.first + r.count,
+                     [&](int a, int b) { return low(a)[axis] + high(a)[axis] < low(b)[axis] + high(b)[axis]; });
+    const int left = static_cast<int>(nodes_.size());
+    nodes_[r.node].left = left;
+    nodes_.emplace_back();
+    nodes_.emplace_back();
+    pending.push_back({left, r.first, middle - r.first});
+    pending.push_back({left + 1, middle, r.first + r.count - middle});
+  }
 }
 
-std::array<int, 3> PointLocator::cell_of(const Eigen::Vector3d& x) const {
-  std::array<int, 3> cell{0, 0, 0};
-  for (int k = 0; k < dim_; ++k)
-    cell[k] = std::clamp(static_cast<int>(std::floor((x[k] - low_[k]) / cell_size_[k])), 0, cells_[k] - 1);
-  return cell;
+bool PointLocator::holds(const Eigen::Vector3d& low, const Eigen::Vector3d& high, const Eigen::Vector3d& x) const {
+  return ((x - low).array() >= -slack_).all() && ((high - x).array() >= -slack_).all();
+}
+
+template <class Visit>
+void PointLocator::for_each_holding(const Eigen::Vector3d& x, Visit&& visit) const {
+  std::vector<int> pending = {0};
+  while (!pending.empty()) {
+    const Node& node = nodes_[pending.back()];
+    pending.pop_back();
+    if (!holds(node.low, node.high, x)) continue;
+    if (node.left < 0) {
+      for (int k = node.first; k < node.first + node.count; ++k)
+        if (holds(boxes_[order_[k]].low, boxes_[order_[k]].high, x)) visit(order_[k]);
+    } else {
+      pending.push_back(node.left);
+      pending.push_back(node.left + 1);
+    }
+  }
+}
+
+std::vector<int> PointLocator::nearest_leaves(const Eigen::Vector3d& x) const {
+  // Best first by the distance from x to a node's box; past the first leaf, the leaves within
+  // that leaf's diagonal of it (as the ring of grid cells around the first one found).
+  const auto distance = [&](const Node& node) { return (x.cwiseMax(node.low).cwiseMin(node.high) - x).norm(); };
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  queue.emplace(distance(nodes_[0]), 0);
+  std::vector<int> leaves;
+  double reach = std::numeric_limits<double>::infinity();
+  while (!queue.empty() && queue.top().first <= reach) {
+    const auto [d, index] = queue.top();
+    queue.pop();
+    const Node& node = nodes_[index];
+    if (node.left < 0) {
+      if (leaves.empty()) reach = d + (node.high - node.low).norm();
+      leaves.push_back(index);
+    } else {
+      queue.emplace(distance(nodes_[node.left]), node.left);
+      queue.emplace(distance(nodes_[node.left + 1]), node.left + 1);
+    }
+  }
+  return leaves;
+}
+
+std::vector<int> PointLocator::near(const Eigen::Vector3d& x) const {
+  std::vector<int> candidates;
+  for_each_holding(x, [&](int s) { candidates.push_back(s); });
+  if (candidates.empty())
+    for (const int leaf : nearest_leaves(x))
+      for (int k = nodes_[leaf].first; k < nodes_[leaf].first + nodes_[leaf].count; ++k)
+        candidates.push_back(order_[k]);
+  return candidates;
 }
 
 Eigen::Vector4d PointLocator::barycentric(int s, const Eigen::Vector3d& x) const {
@@ -80,33 +153,21 @@ Eigen::Vector4d PointLocator::barycentric(int s, const Eigen::Vector3d& x) const
 }
 
 PointLocator::Location PointLocator::locate(const Eigen::Vector3d& x) const {
-  const std::array<int, 3> home = cell_of(x);
   int best = -1;
   double best_margin = -std::numeric_limits<double>::infinity();
-  // Rings of cells around x's cell, outward, until a simplex holds x, or a ring past the one
-  // where the closest candidate so far was found has been searched too.
-  const int max_ring = *std::max_element(cells_.begin(), cells_.end());
-  int found_ring = -1;
-  for (int ring = 0; ring <= max_ring; ++ring) {
-    for (int i = home[0] - ring; i <= home[0] + ring; ++i)
-      for (int j = home[1] - ring; j <= home[1] + ring; ++j)
-        for (int l = home[2] - ring; l <= home[2] + ring; ++l) {
-          if (i < 0 || j < 0 || l < 0 || i >= cells_[0] || j >= cells_[1] || l >= cells_[2]) continue;
-          if (std::max({std::abs(i - home[0]), std::abs(j - home[1]), std::abs(l - home[2])}) != ring) continue;
-          const std::size_t c = (static_cast<std::size_t>(l) * cells_[1] + j) * cells_[0] + i;
-          for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
-            const int s = cell_simplices_[k];
-            const double margin = barycentric(s, x).head(dim_ + 1).minCoeff();
-            if (margin > best_margin) {
-              best_margin = margin;
-              best = s;
-            }
-          }
-        }
-    if (best >= 0 && best_margin >= -1e-12) break;
-    if (best >= 0 && found_ring < 0) found_ring = ring;
-    if (found_ring >= 0 && ring > found_ring) break;
-  }
+  const auto consider = [&](int s) {
+    const double margin = barycentric(s, x).head(dim_ + 1).minCoeff();
+    if (margin > best_margin) {
+      best_margin = margin;
+      best = s;
+    }
+  };
+  for_each_holding(x, consider);
+  // Outside every simplex whose box holds x (outside the mesh, or beside a curved side): the
+  // least negative barycentric coordinates among the nearest leaves too.
+  if (best < 0 || best_margin < -1e-12)
+    for (const int leaf : nearest_leaves(x))
+      for (int k = nodes_[leaf].first; k < nodes_[leaf].first + nodes_[leaf].count; ++k) consider(order_[k]);
   Location at;
   at.simplex = best;
   at.weights = barycentric(best, x).cwiseMax(0.0);

@@ -8,8 +8,6 @@
 
 #include <Eigen/Core>
 #include <array>
-#include <cstddef>
-#include <utility>
 #include <vector>
 
 namespace contactqp::detail {
@@ -42,27 +40,39 @@ class PointLocator {
 
   int n_vertices() const { return static_cast<int>(vertices_.size()); }
 
-  // The simplices whose boxes meet the grid cell holding x (the nearest cell when x lies outside
-  // the grid), as [first, last): the candidates for a caller that tests "inside" its own way
-  // (a curved cell's isoparametric map, post/nested_difference.cpp).
-  std::pair<const int*, const int*> near(const Eigen::Vector3d& x) const {
-    const std::array<int, 3> c = cell_of(x);
-    const std::size_t k = (static_cast<std::size_t>(c[2]) * cells_[1] + c[1]) * cells_[0] + c[0];
-    return {cell_simplices_.data() + cell_start_[k], cell_simplices_.data() + cell_start_[k + 1]};
-  }
+  // The simplices whose boxes hold x (the nearest leaf's when none does), each once: the
+  // candidates for a caller that tests "inside" its own way (a curved cell's isoparametric map,
+  // post/nested_difference.cpp).
+  std::vector<int> near(const Eigen::Vector3d& x) const;
 
  private:
+  // A node of the bounding-volume hierarchy: the box of its simplices' boxes; a leaf lists
+  // order_[first, first + count), an inner node's children are nodes_[left] and nodes_[left + 1].
+  struct Node {
+    Eigen::Vector3d low, high;
+    int left = -1, first = 0, count = 0;
+  };
   Eigen::Vector4d barycentric(int s, const Eigen::Vector3d& x) const;
-  std::array<int, 3> cell_of(const Eigen::Vector3d& x) const;
+  bool holds(const Eigen::Vector3d& low, const Eigen::Vector3d& high, const Eigen::Vector3d& x) const;
+  // Calls visit(simplex) for every simplex whose box holds x within slack_.
+  template <class Visit>
+  void for_each_holding(const Eigen::Vector3d& x, Visit&& visit) const;
+  // The leaves nearest x (box distance), nearest first, up to one past the first leaf found,
+  // as node indices: where x lies outside every box.
+  std::vector<int> nearest_leaves(const Eigen::Vector3d& x) const;
 
   int dim_;
   std::vector<Eigen::Vector3d> vertices_;
   std::vector<std::array<int, 4>> simplices_;
   std::vector<Eigen::Matrix3d> inverse_;  // of each simplex's edge matrix [v1 − v0, v2 − v0, v3 − v0]
-  // A uniform grid over the bounding box: each cell lists the simplices whose boxes meet it (CSR).
-  Eigen::Vector3d low_, cell_size_;
-  std::array<int, 3> cells_{1, 1, 1};
-  std::vector<int> cell_start_, cell_simplices_;
+  // The hierarchy: boxes split at the median of their simplices' centres along their longest
+  // side, down to a few simplices per leaf, so that a query costs about log n boxes however
+  // strongly the mesh is graded (a uniform grid put 1e4 simplices of an adapted mesh's contact
+  // zone in one cell).
+  std::vector<Node> nodes_;
+  std::vector<int> order_;  // simplices, leaf by leaf
+  std::vector<Box> boxes_;  // each simplex's (its vertices', widened to the caller's)
+  double slack_ = 0;        // box tolerance: round-off of the mesh's extent
 };
 
 }  // namespace contactqp::detail

@@ -83,10 +83,9 @@ double distance(const Model& coarse, const Eigen::VectorXd& u_coarse, const Mode
       }
       return outside == 0;
     };
-    const auto [first, last] = locator.near(fine.mesh.nodes[node]);
-    for (const int* e = first; e != last; ++e)
-      if (consider(*e)) break;
-    if (best < 0) {  // no cell of the body meets x's grid cell: the cell whose vertices x lies nearest
+    for (const int e : locator.near(fine.mesh.nodes[node]))
+      if (consider(e)) break;
+    if (best < 0) {  // no box of the body's cells holds x: the cell whose vertices x lies nearest
       consider(locator.locate(fine.mesh.nodes[node]).simplex);
       if (best < 0)  // it was another body's: the body's cell x lies least outside of
         for (int e = 0; e < mesh.n_elements(); ++e)
