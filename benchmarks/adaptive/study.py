@@ -8,7 +8,9 @@ is `contactqp solve --json`, timed by its own JSON ("total": mesh to estimate). 
 is the run with the smallest estimated error of all. Prints, per family, quantity and
 tolerance, the fewest DOFs and the least whole-run time (for adaptive: the cycles up to that one) at which the quantity is
 within the tolerance of the reference and stays within it on every finer mesh of that method,
-the estimate's rate in N and, on linear elements, its effectivity on every adaptive cycle. Writes every point to results/points.csv.
+the estimate's rate in N and, on linear elements without friction, its effectivity on every
+adaptive cycle. Writes every point to results/points.csv (a family run again replaces its own
+rows; the others stay); benchmarks/adaptive/plot.py draws them.
 
     /usr/bin/python3 benchmarks/adaptive/study.py [--cli build/contactqp] [--families "hertz 2D P1,..."]
 """
@@ -26,12 +28,16 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 
 # name, scene, element order, quantities read, adaptive target, DOF cap, uniform levels, hand-graded levels
 ALL = ["max_pressure", "zone", "total_force"]
+FRICTION = ["tangential_force", "stick_zone"]  # Q and the stick zone's c (b and a in 2D and 3D)
 FAMILIES = [
     ("hertz 2D P1", "scenes/hertz.json", 1, ALL, 0.0025, 600000, 7, 4),
     ("two cylinders 2D P1", "scenes/two-cylinders.json", 1, ALL, 0.004, 400000, 6, 3),
     ("hertz 3D P1", "scenes/hertz-sphere.json", 1, ALL, 0.08, 100000, 3, 2),
     ("hertz 3D P2", "scenes/hertz-sphere.json", 2, ALL, 0.005, 250000, 3, 2),
     ("punch 3D P2", "scenes/punch.json", 2, ["total_force"], 0.015, 250000, 3, 2),
+    # Coulomb friction along the load path (pressed, then sheared to Q = 0.7 muP): b/R = 0.002,
+    # so uniform meshes of the far-field size do not reach the zone within the cap.
+    ("mindlin on plane 2D P1", "scenes/mindlin-on-plane.json", 1, ALL + FRICTION, 0.004, 400000, 6, 3),
 ]
 TOLERANCES = [0.01, 0.003, 0.001]
 
@@ -53,7 +59,11 @@ def quantities(result, dim):
     contact = result["pairs"][0] if result.get("pairs") and not result["contact"]["total_force"] else result["contact"]
     zone = contact.get("half_width") if dim == 2 else contact.get("contact_radius")
     force = contact["total_force"] if "force_on_node_body" not in contact else math.hypot(*contact["force_on_node_body"])
-    return {"max_pressure": contact["max_pressure"], "zone": zone, "total_force": force}
+    out = {"max_pressure": contact["max_pressure"], "zone": zone, "total_force": force}
+    if "tangential_force" in contact:
+        out["tangential_force"] = contact["tangential_force"]
+        out["stick_zone"] = contact["stick_half_width" if dim == 2 else "stick_radius"]
+    return out
 
 
 def meshes(scene):
@@ -97,7 +107,7 @@ def main():
         elapsed = 0
         for cycle in result["adaptive"]["cycles"]:
             elapsed += cycle["seconds"]
-            q = {"max_pressure": cycle["max_pressure"], "zone": cycle["zone"], "total_force": cycle["total_force"]}
+            q = {key: cycle[key] for key in ALL + FRICTION if key in cycle}
             points.append(("adaptive", cycle["dofs"], elapsed, q, cycle["relative"], cycle["strain_energy"]))
         # Uniform: one size everywhere, halved level by level. Hand-graded: the scene's size
         # function min(size, contact_size + grading · d) halved everywhere.
@@ -162,7 +172,8 @@ def main():
         # penetrate between nodes (linear elements); E is extrapolated from the last two adaptive
         # cycles with E_h - E proportional to N^(-2p/d), the optimal rate.
         cycles = [p for p in points if p[0] == "adaptive"]
-        if order == 1 and len(cycles) >= 4:
+        # Not with friction: the dissipation breaks the identity.
+        if order == 1 and len(cycles) >= 4 and "tangential_force" not in names:
             (n1, e1), (n2, e2) = [(p[1], p[5]) for p in cycles[-2:]]
             k = 2.0 * order / dim
             exact = e2 - (e1 - e2) / (n2 ** k / n1 ** k - 1)
@@ -176,7 +187,12 @@ def main():
                                if p[5] > exact else "- (E_h < E)")
                 print("| %d | %d | %.3g%% | %s |" % (i + 1, p[1], 100 * p[4], effectivity))
         sys.stdout.flush()
-    with open(os.path.join(args.out, "points.csv"), "w", newline="") as f:
+    # The families not run this time keep their rows from an earlier run.
+    path = os.path.join(args.out, "points.csv")
+    if os.path.exists(path):
+        ran = {row["family"] for row in rows}
+        rows = [row for row in csv.DictReader(open(path)) if row["family"] not in ran] + rows
+    with open(path, "w", newline="") as f:
         keys = sorted({k for r in rows for k in r}, key=lambda k: (k not in ("family", "method", "dofs"), k))
         writer = csv.DictWriter(f, fieldnames=keys)
         writer.writeheader()

@@ -54,7 +54,11 @@ struct AdaptiveCycle {
   // Against the obstacles (ContactSummary); in a scene whose bodies touch only each other, the
   // first pair's (PairContact: the force's norm, the node side's pressure).
   double total_force = 0, max_pressure = 0;
-  double zone = 0;     // the contact zone's half-width b (2D) or radius a (3D)
+  double zone = 0;  // the contact zone's half-width b (2D) or radius a (3D)
+  // With friction (the last load step's): the tangential force Q and the stick zone's half-width
+  // c (2D) or radius (3D), from the same zone as the three above.
+  bool friction = false;
+  double tangential_force = 0, stick_zone = 0;
   int iterations = 0;  // the solve's (started from the last cycle's answer after the first)
   double seconds = 0;  // the cycle's whole run: mesh to estimate
 };

@@ -287,6 +287,10 @@ warnings; json(), csv(), vtu() give the output files' text.)")
               cycle["total_force"] = c.total_force;
               cycle["max_pressure"] = c.max_pressure;
               cycle["zone"] = c.zone;
+              if (c.friction) {
+                cycle["tangential_force"] = c.tangential_force;
+                cycle["stick_zone"] = c.stick_zone;
+              }
               cycle["iterations"] = c.iterations;
               cycle["seconds"] = c.seconds;
               cycles.append(cycle);

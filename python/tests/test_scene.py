@@ -97,7 +97,25 @@ def test_an_adaptive_scene_reports_its_cycles_as_the_json_does(tmp_path):
     assert cycles[-1]["dofs"] == r.dofs
     assert cycles[-1]["relative"] <= 0.05 < cycles[0]["relative"]
     assert json.loads(r.json())["adaptive"]["cycles"][-1]["dofs"] == r.dofs
+    assert "tangential_force" not in cycles[-1]  # friction's keys only with friction
     assert contactqp.solve_scene(HERTZ).adaptive is None
+
+
+def test_a_frictional_adaptive_scene_reports_q_and_the_stick_zone_per_cycle(tmp_path):
+    # sliding-block.json (Coulomb, load steps): every cycle reruns the path; each cycle has the
+    # last step's tangential force and stick zone, the last cycle's the report's own.
+    scene = json.loads(open(source_path("scenes/sliding-block.json")).read())
+    scene["adapt"] = {"target": 0.03}
+    path = tmp_path / "adaptive.json"
+    path.write_text(json.dumps(scene))
+    r = contactqp.solve_scene(str(path))
+    cycles = r.adaptive["cycles"]
+    assert r.adaptive["met"] and len(cycles) >= 2
+    result = json.loads(r.json())
+    assert [c["tangential_force"] for c in result["adaptive"]["cycles"]] == [c["tangential_force"] for c in cycles]
+    assert cycles[-1]["tangential_force"] == pytest.approx(result["contact"]["tangential_force"], rel=1e-12)
+    assert cycles[-1]["stick_zone"] == pytest.approx(result["contact"]["stick_half_width"], rel=1e-12, abs=1e-300)
+    assert cycles[-1]["tangential_force"] > 0
 
 
 def test_csv_and_vtu_equal_the_cli_files(tmp_path):

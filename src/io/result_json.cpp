@@ -221,17 +221,23 @@ json error_estimate_json(const ErrorEstimate& e) {
 // An adaptive run (docs/adaptive.md): its target, whether it was met, and every cycle.
 json adaptive_json(const AdaptiveRun& run) {
   json cycles = json::array();
-  for (const AdaptiveCycle& c : run.cycles)
-    cycles.push_back({{"elements", c.elements},
-                      {"dofs", c.dofs},
-                      {"energy_norm", number(c.estimate)},
-                      {"relative", number(c.relative)},
-                      {"strain_energy", number(c.strain_energy)},
-                      {"total_force", number(c.total_force)},
-                      {"max_pressure", number(c.max_pressure)},
-                      {"zone", number(c.zone)},
-                      {"iterations", c.iterations},
-                      {"seconds", number(c.seconds)}});
+  for (const AdaptiveCycle& c : run.cycles) {
+    json cycle = {{"elements", c.elements},
+                  {"dofs", c.dofs},
+                  {"energy_norm", number(c.estimate)},
+                  {"relative", number(c.relative)},
+                  {"strain_energy", number(c.strain_energy)},
+                  {"total_force", number(c.total_force)},
+                  {"max_pressure", number(c.max_pressure)},
+                  {"zone", number(c.zone)},
+                  {"iterations", c.iterations},
+                  {"seconds", number(c.seconds)}};
+    if (c.friction) {
+      cycle["tangential_force"] = number(c.tangential_force);
+      cycle["stick_zone"] = number(c.stick_zone);
+    }
+    cycles.push_back(cycle);
+  }
   json out = {{"target", number(run.spec.target)},
               {"max_dofs", run.spec.max_dofs},
               {"max_cycles", run.spec.max_cycles},

@@ -59,10 +59,20 @@ AdaptiveCycle cycle_of(const RunReport& report, double seconds) {
     cycle.total_force = pair.force_on_node_body.norm();
     cycle.max_pressure = pair.max_pressure;
     cycle.zone = solid ? pair.contact_radius : pair.half_width;
+    if (pair.friction) {
+      cycle.friction = true;
+      cycle.tangential_force = pair.friction->tangential_force;
+      cycle.stick_zone = pair.friction->stick_size;
+    }
   } else {
     cycle.total_force = report.contact.total_force;
     cycle.max_pressure = report.contact.max_pressure;
     cycle.zone = solid ? report.contact.contact_radius : report.contact.half_width;
+    if (report.friction) {
+      cycle.friction = true;
+      cycle.tangential_force = report.contact.tangential_force;
+      cycle.stick_zone = report.contact.stick_size;
+    }
   }
   cycle.iterations = report.result.iterations;
   cycle.seconds = seconds;

@@ -159,5 +159,11 @@ TEST_CASE("adaptive runs on quadratic elements, in 3D, between two bodies and wi
     CHECK(report.adaptive->cycles.size() >= 2);
     CHECK(report.steps.size() == scene.steps.size());
     CHECK(report.friction);
+    // Each cycle reports its friction; the last cycle's is the report's own (the last step's).
+    for (const AdaptiveCycle& cycle : report.adaptive->cycles) CHECK(cycle.friction);
+    const AdaptiveCycle& last = report.adaptive->cycles.back();
+    CHECK(last.tangential_force == report.contact.tangential_force);
+    CHECK(last.stick_zone == report.contact.stick_size);
+    CHECK(last.tangential_force > 0);
   }
 }
