@@ -130,15 +130,18 @@ std::string summary_table(const RunReport& report) {
                   run->met
                       ? format("met after %zu cycle%s", run->cycles.size(), run->cycles.size() == 1 ? "" : "s").c_str()
                       : ("not met: " + run->stop).c_str());
+    // With friction two more columns: the tangential force Q and the stick zone c.
+    const bool friction = !run->cycles.empty() && run->cycles.front().friction;
     out += format(
         "               cycle  elements      DOFs       eta  eta/sqrt(2E)  total force  max pressure  "
-        "%s  iterations  time [s]\n",
-        solid ? "radius a" : "  half b");
+        "%s%s  iterations  time [s]\n",
+        solid ? "radius a" : "  half b", friction ? "            Q  stick zone c" : "");
     for (std::size_t k = 0; k < run->cycles.size(); ++k) {
       const AdaptiveCycle& c = run->cycles[k];
-      out +=
-          format("               %5zu %9lld %9lld %9.3g %12.3g%% %12.6g %13.6g %9.6g %11d %9.3g\n", k + 1, c.elements,
-                 c.dofs, c.estimate, 100 * c.relative, c.total_force, c.max_pressure, c.zone, c.iterations, c.seconds);
+      out += format("               %5zu %9lld %9lld %9.3g %12.3g%% %12.6g %13.6g %9.6g%s %11d %9.3g\n", k + 1,
+                    c.elements, c.dofs, c.estimate, 100 * c.relative, c.total_force, c.max_pressure, c.zone,
+                    friction ? format(" %12.6g %13.6g", c.tangential_force, c.stick_zone).c_str() : "", c.iterations,
+                    c.seconds);
     }
   }
   const ContactSummary& contact = report.contact;
