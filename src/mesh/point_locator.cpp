@@ -95,17 +95,21 @@ bool PointLocator::holds(const Eigen::Vector3d& low, const Eigen::Vector3d& high
 
 template <class Visit>
 void PointLocator::for_each_holding(const Eigen::Vector3d& x, Visit&& visit) const {
-  std::vector<int> pending = {0};
-  while (!pending.empty()) {
-    const Node& node = nodes_[pending.back()];
-    pending.pop_back();
+  // Depth first on a stack of its own: Gmsh's size callback comes here for every point it
+  // sizes, so no allocation per query. The median split keeps the depth near log2(n), and the
+  // stack holds at most depth + 1 nodes.
+  std::array<int, 128> pending;
+  int top = 0;
+  pending[top++] = 0;
+  while (top > 0) {
+    const Node& node = nodes_[pending[--top]];
     if (!holds(node.low, node.high, x)) continue;
     if (node.left < 0) {
       for (int k = node.first; k < node.first + node.count; ++k)
         if (holds(boxes_[order_[k]].low, boxes_[order_[k]].high, x)) visit(order_[k]);
     } else {
-      pending.push_back(node.left);
-      pending.push_back(node.left + 1);
+      pending[top++] = node.left;
+      pending[top++] = node.left + 1;
     }
   }
 }
