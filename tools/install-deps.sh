@@ -1,8 +1,8 @@
 #!/bin/sh
 # Installs the Debian packages contactqp needs to build, test and benchmark (run as root on
 # Debian bookworm). Skips apt entirely when everything is already installed. clang and
-# libclang-rt-dev (compiler-rt: libFuzzer and clang's sanitizer runtimes) build the scene
-# parser's fuzzer; g++'s own sanitizer runtimes (libasan8, libubsan1) come with g++.
+# libclang-rt-dev (compiler-rt: libFuzzer and clang's sanitizer runtimes) build CI's sanitizer
+# suite and the fuzzers (tools/run-tests.sh, stage 2).
 # clang-format (14) checks that the tree is formatted (tools/check-format.sh, a ctest entry).
 # pybind11-dev, python3-dev (Python's headers) and python3-pybind11 build the contactqp Python
 # module for Debian's /usr/bin/python3; python3-scipy (scipy.sparse in) and python3-pytest run

@@ -3,7 +3,9 @@
 #include "ipopt_plugin.hpp"
 #include "ipopt_solve.hpp"
 
-extern "C" __attribute__((visibility("default"))) const contactqp::detail::IpoptPlugin* contactqp_ipopt_plugin() {
+// Returns const void*, the type open_plugin() (plugins.cpp) calls it through: a call through a
+// pointer to another function type is undefined (Clang's -fsanitize=function stops on it).
+extern "C" __attribute__((visibility("default"))) const void* contactqp_ipopt_plugin() {
   static const contactqp::detail::IpoptPlugin table = [] {
     contactqp::detail::IpoptPlugin plugin;
     plugin.abi = contactqp::detail::kIpoptPluginAbi;
