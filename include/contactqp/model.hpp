@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <string>
 #include <vector>
@@ -86,6 +87,26 @@ struct RigidSurface {
   std::vector<int> nodes;  // ascending
 };
 
+// A force load's rigid surface that also turns (RigidForceLoad::moment): one column of K per axis
+// it turns about. Its tied DOFs move by the surface's translation plus the turn, u_i = t + θ ×
+// (x_i − centre) (the lever arms: Model::levers), so t is the translation at `centre`.
+struct RigidRotation {
+  int load = -1;                                     // its entry in scene.loads
+  int axis = 2;                                      // about the scene's own axis (z in 2D)
+  int column = -1;                                   // the angle's free DOF
+  double moment = 0;                                 // the whole body's moment about it, at the current load step
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // the point it turns about, global frame
+  std::vector<int> nodes;                            // ascending, the surface's
+};
+
+// The share of a turning surface's angle in one tied DOF: DOF `dof` moves by weight × u[column]
+// beyond u[free_index[dof]] (for_each_column()).
+struct Lever {
+  int dof = 0;
+  int column = 0;
+  double weight = 0;
+};
+
 struct Model {
   // The scene as solved, in the global frame: its transform is applied (obstacles and load
   // vectors rotated) and reset; `rotation` remembers it (a rotation about z in 2D).
@@ -104,6 +125,11 @@ struct Model {
   // Force loads on rigid surfaces: one entry per load and tied component (ascending load, then
   // component). Several DOFs then map to one free index: it is injective only when this is empty.
   std::vector<RigidSurface> rigid_surfaces;
+  // Surfaces that also turn: one entry per load and axis, their columns after every other one.
+  // `levers` holds each tied DOF's share of their angles, sorted by DOF; both are empty without
+  // a moment, and then free_index alone maps the DOFs to the columns.
+  std::vector<RigidRotation> rigid_rotations;
+  std::vector<Lever> levers;
   // dim·n_nodes, global axes: consistent nodal forces of the force loads (traction, pressure,
   // gravity, point), for the body's thickness in 2D (force).
   Eigen::VectorXd nodal_force;
@@ -133,6 +159,26 @@ struct Model {
 
 // The body element e belongs to (0 for a one-body model); element_laws() below has each body's law.
 inline int body_of_element(const Model& model, int e) { return model.element_body.empty() ? 0 : model.element_body[e]; }
+
+// Calls add(column, weight) for each column DOF `dof` moves with: its own (weight 1) unless it
+// is prescribed, and on a turning surface each angle's, weighted by its lever arm. The DOF's
+// displacement is Σ weight · u[column] (plus its prescribed value); a row or column of K, B or f
+// on that DOF goes to each of them, times the weight (TᵀKT, BT, Tᵀf for u = T u').
+template <class Add>
+void for_each_column(const Model& model, int dof, Add&& add) {
+  const int column = model.free_index[static_cast<size_t>(dof)];
+  if (column >= 0) add(column, 1.0);
+  if (model.levers.empty()) return;
+  auto at = std::lower_bound(model.levers.begin(), model.levers.end(), dof,
+                             [](const Lever& lever, int d) { return lever.dof < d; });
+  for (; at != model.levers.end() && at->dof == dof; ++at) add(at->column, at->weight);
+}
+
+// The turning surfaces' columns (translations and angles) that best fit `dof_values` (dim·n_nodes
+// × k, each DOF along its frame's column) on their tied DOFs, written into those rows of
+// `columns` (n_free × k): exact for a rigid motion, least squares for any other displacement.
+// Nothing without a moment (model.rigid_rotations empty).
+void fit_turning_surfaces(const Model& model, const Eigen::MatrixXd& dof_values, Eigen::MatrixXd& columns);
 
 // Builds mesh, boundary conditions and candidates. Throws InputError on a scene that cannot
 // be modelled (element limit, a boundary condition that penetrates an obstacle, ...).

@@ -258,6 +258,13 @@ struct Reaction {
   // axes, as the load's value), none along a free one; none at all for a displacement load.
   std::optional<double> displacement[3];
   bool rigid_surface() const { return displacement[0] || displacement[1] || displacement[2]; }
+  // A force load with a moment: the surface's displacement above is that of `about`, and it
+  // turned by `rotation` (radians) about each axis it turns about, carrying `moment` (the
+  // whole body's, about `about`); none about an axis it does not turn about.
+  std::optional<double> rotation[3];
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();  // the scene's own axes, like the load's
+  Eigen::Vector3d about = Eigen::Vector3d::Zero();   // the scene's own frame
+  bool turns() const { return rotation[0] || rotation[1] || rotation[2]; }
 };
 std::vector<Reaction> reactions(const Model& model, const QuadraticProgram& qp, const Eigen::VectorXd& u,
                                 const Eigen::VectorXd& lambda, const Eigen::VectorXd& lambda_t = Eigen::VectorXd());

@@ -112,9 +112,15 @@ struct GravityLoad {   // density × g on the body, or on a region of a mesh bod
 // each node free, as a displacement load's null does. The force is the whole body's (its
 // mirror images included, as the report's contact force counts them), for the thickness in 2D.
 // Components stay along the scene's own axes under its transform, as a displacement's do.
+// A moment (docs/scenes.md, "Moment on a rigid surface"): about each given axis the surface also
+// turns, by one unknown angle, and carries that component of the moment about `about`; a null
+// component keeps it from turning about that axis, as a surface without a moment is kept.
 struct RigidForceLoad {
   std::string boundary;
   std::optional<double> value[3];
+  std::optional<double> moment[3];       // about the scene's own axes; 2D: about z only (moment[2])
+  std::optional<Eigen::Vector3d> about;  // the moment's point (scene frame); the boundary's centroid when absent
+  bool turns() const { return moment[0] || moment[1] || moment[2]; }
 };
 struct PointLoad {                    // a force (for the thickness) at the node nearest a point
   std::optional<Eigen::Vector3d> at;  // the location (the nearest node takes the force)

@@ -65,6 +65,16 @@ py::list reactions_list(const std::vector<Reaction>& reactions, int dim) {
         moved.append(r.displacement[c] ? py::object(py::float_(*r.displacement[c])) : py::none());
       entry["displacement"] = moved;
     }
+    if (r.turns()) {  // a moment: what it carries and how far it turned (2D: about z; None: held)
+      py::list moment, turned;
+      for (int a = 0; a < 3; ++a) {
+        moment.append(r.rotation[a] ? py::object(py::float_(r.moment[a])) : py::none());
+        turned.append(r.rotation[a] ? py::object(py::float_(*r.rotation[a])) : py::none());
+      }
+      entry["moment"] = dim == 2 ? moment[2] : py::object(moment);
+      entry["rotation"] = dim == 2 ? turned[2] : py::object(turned);
+      entry["about"] = py::cast(Eigen::VectorXd(r.about.head(dim)));
+    }
     list.append(entry);
   }
   return list;

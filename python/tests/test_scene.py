@@ -66,6 +66,18 @@ def test_a_force_on_a_rigid_surface_reports_how_far_the_surface_moved():
     assert -surface["force"][1] == pytest.approx(r.contact.total_force, rel=1e-8)
 
 
+def test_a_moment_on_a_rigid_surface_reports_how_far_the_surface_turned():
+    # scenes/block-moment.json: within the kern beam theory is exact with quadratic elements:
+    # the top sinks by P H (1 - nu^2) / (E W) and turns by 12 H M (1 - nu^2) / (E W^3).
+    r = contactqp.solve_scene(source_path("scenes/block-moment.json"))
+    assert r.status == contactqp.Status.CONVERGED
+    (surface,) = r.reactions
+    assert surface["moment"] == 0.002
+    assert surface["rotation"] == pytest.approx(12 * 0.002 * 0.91 / 8, rel=1e-8)
+    assert surface["displacement"][1] == pytest.approx(-0.01 * 0.91 / 2, rel=1e-8)
+    np.testing.assert_allclose(surface["about"], [0.0, 1.0], atol=1e-14)
+
+
 def test_a_ball_between_two_plates_reports_how_far_it_moved_as_a_whole():
     # scenes/ball-between-plates.json: identical plates, the lower held, the upper's top moved by
     # d by the force; by the mirror symmetry about the ball's centre the ball moves by d/2.

@@ -208,6 +208,20 @@ std::string summary_table(const RunReport& report) {
           "  rigid force  %s on \"%s\": (%s), moved by (%s)\n", r.load.c_str(), r.boundary.c_str(),
           solid ? format("%.6g, %.6g, %.6g", f.x(), f.y(), f.z()).c_str() : format("%.6g, %.6g", f.x(), f.y()).c_str(),
           moved.c_str());
+      if (r.turns()) {  // and the moment it carries, how far it turned (radians; "held": not about that axis)
+        std::string moment, turned;
+        for (int a = solid ? 0 : 2; a < 3; ++a) {
+          const bool first = a == (solid ? 0 : 2);
+          moment += (first ? "" : ", ") + (r.rotation[a] ? format("%.6g", r.moment[a] + 0.0) : std::string("-"));
+          turned += (first ? "" : ", ") + (r.rotation[a] ? format("%.6g", *r.rotation[a] + 0.0) : std::string("held"));
+        }
+        const Eigen::Vector3d c = r.about.array() + 0.0;
+        out += format("  rigid moment %s about (%s): %s%s%s, turned by %s%s%s rad\n", r.load.c_str(),
+                      solid ? format("%.6g, %.6g, %.6g", c.x(), c.y(), c.z()).c_str()
+                            : format("%.6g, %.6g", c.x(), c.y()).c_str(),
+                      solid ? "(" : "", moment.c_str(), solid ? ")" : "", solid ? "(" : "", turned.c_str(),
+                      solid ? ")" : "");
+      }
       continue;
     }
     out +=

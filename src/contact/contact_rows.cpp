@@ -141,11 +141,8 @@ ContactRowEntries pair_row_of(const Model& model, const Candidate& candidate) {
       const int dof = dim * node + c;
       const double value = scale * candidate.normal[c];
       if (value == 0.0) continue;
-      const int column = model.free_index[dof];
-      if (column < 0)
-        row.g -= value * model.prescribed[dof];
-      else
-        row.coefficients.emplace_back(column, value);
+      if (model.free_index[dof] < 0) row.g -= value * model.prescribed[dof];
+      for_each_column(model, dof, [&](int column, double w) { row.coefficients.emplace_back(column, w * value); });
     }
   };
   add(candidate.node, -1.0);
@@ -176,7 +173,7 @@ ContactRowEntries contact_row(const Model& model, const Candidate& candidate) {
     if (column < 0)
       row.g += n_c * model.prescribed[dof];  // −n_c u_c is known: move it to the right-hand side
     else if (n_c != 0.0)
-      row.coefficients.emplace_back(column, -n_c);
+      for_each_column(model, dof, [&](int col, double w) { row.coefficients.emplace_back(col, -w * n_c); });
   }
   return row;
 }

@@ -115,8 +115,8 @@ Eigen::VectorXd tangential_positions(const Model& model, const Eigen::VectorXd& 
   Eigen::VectorXd position = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(rows.size()));
   for (size_t r = 0; r < rows.size(); ++r)
     for (const auto& [dof, value] : rows[r].entries) {
-      const int column = model.free_index[dof];
-      position[r] += value * (column >= 0 ? u[column] : model.prescribed[dof]);
+      if (model.free_index[dof] < 0) position[r] += value * model.prescribed[dof];
+      for_each_column(model, dof, [&](int column, double w) { position[r] += value * w * u[column]; });
     }
   return position;
 }
@@ -141,7 +141,8 @@ void add_friction_rows(const Model& model, QuadraticProgram& qp) {
   std::vector<Eigen::Triplet<double>> entries;
   for (size_t r = 0; r < rows.size(); ++r)
     for (const auto& [dof, value] : rows[r].entries)
-      if (model.free_index[dof] >= 0) entries.emplace_back(static_cast<int>(r), model.free_index[dof], value);
+      for_each_column(model, dof,
+                      [&](int column, double w) { entries.emplace_back(static_cast<int>(r), column, w * value); });
   block.T.resize(static_cast<Eigen::Index>(rows.size()), qp.n_dofs());
   block.T.setFromTriplets(entries.begin(), entries.end());
   block.T.makeCompressed();

@@ -126,6 +126,19 @@ std::vector<int> point_load_nodes(const Scene& scene, const Mesh& mesh, std::vec
   return nodes;
 }
 
+Eigen::Vector3d boundary_centroid(const Mesh& mesh, const std::string& boundary) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double measure = 0;
+  for (const BoundaryFace& face : mesh.boundaries.at(boundary))
+    for (const FacePoint& p : face_points(mesh, face)) {
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      for (int k = 0; k < face.n_nodes; ++k) x += p.N[k] * mesh.nodes[face.nodes[k]];
+      sum += p.a.norm() * p.weight * x;
+      measure += p.a.norm() * p.weight;
+    }
+  return measure > 0 ? Eigen::Vector3d(sum / measure) : sum;
+}
+
 Eigen::VectorXd nodal_forces(const Scene& scene, const Mesh& mesh, const std::vector<int>& point_nodes) {
   const int dim = mesh.dim;
   Eigen::VectorXd f = Eigen::VectorXd::Zero(dim * mesh.n_nodes());

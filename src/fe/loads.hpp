@@ -20,4 +20,7 @@ Eigen::VectorXd nodal_forces(const Scene& scene, const Mesh& mesh, const std::ve
 // its `at`, or its named point. Adds a warning when that node is far from `at`.
 std::vector<int> point_load_nodes(const Scene& scene, const Mesh& mesh, std::vector<std::string>& warnings);
 
+// The centroid of a boundary of `mesh` (its faces' measure-weighted mean point).
+Eigen::Vector3d boundary_centroid(const Mesh& mesh, const std::string& boundary);
+
 }  // namespace contactqp::detail

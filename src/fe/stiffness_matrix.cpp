@@ -65,19 +65,19 @@ void build_pattern(const Model& model, const std::vector<char>& owned, Eigen::Sp
   K.resize(model.n_free, model.n_free);
   std::vector<int> neighbours;
   if (!model.rigid_surfaces.empty()) {
-    // A rigid surface's DOFs share a column (model.hpp): its rows are those of all its nodes,
-    // and a node's rows no longer ascend with the DOF. Built column by column instead, sorted.
+    // A rigid surface's DOFs share a column (model.hpp), and a turning one's also move with its
+    // angles' columns: a column's rows are those of all its nodes, and a node's rows no longer
+    // ascend with the DOF. Built column by column instead, sorted.
     std::vector<std::vector<int>> rows_of_column(model.n_free);
     for (int n = 0; n < n_nodes; ++n) {
       if (free_of_node[n] == 0 || at.first[n] == at.first[n + 1]) continue;
       neighbours_of(mesh, at, n, neighbours);
-      for (int c = 0; c < dim; ++c) {
-        const int column = model.free_index[dim * n + c];
-        if (column < 0) continue;
-        for (int m : neighbours)
-          for (int r = 0; r < dim; ++r)
-            if (model.free_index[dim * m + r] >= 0) rows_of_column[column].push_back(model.free_index[dim * m + r]);
-      }
+      for (int c = 0; c < dim; ++c)
+        for_each_column(model, dim * n + c, [&](int column, double) {
+          for (int m : neighbours)
+            for (int r = 0; r < dim; ++r)
+              for_each_column(model, dim * m + r, [&](int row, double) { rows_of_column[column].push_back(row); });
+        });
     }
     std::size_t total = 0;
     for (std::vector<int>& rows : rows_of_column) {
@@ -192,17 +192,31 @@ void assemble_stiffness(const Model& model, const std::vector<char>& elements, E
         if (!owned[e]) continue;
         dofs_of(e, dofs.data());
         const Eigen::MatrixXd& k = Ke[e - start];
-        for (int j = 0; j < n; ++j) {
-          const int column = model.free_index[dofs[j]];
-          if (column < column_from[t] || column >= column_from[t + 1]) continue;
-          const int* rows = inner + outer[column];
-          const int* rows_end = inner + outer[column + 1];
-          for (int i = 0; i < n; ++i) {
-            const int row = model.free_index[dofs[i]];
-            if (row < 0) continue;
-            values[std::lower_bound(rows, rows_end, row) - inner] += k(i, j);
+        if (model.levers.empty()) {
+          for (int j = 0; j < n; ++j) {
+            const int column = model.free_index[dofs[j]];
+            if (column < column_from[t] || column >= column_from[t + 1]) continue;
+            const int* rows = inner + outer[column];
+            const int* rows_end = inner + outer[column + 1];
+            for (int i = 0; i < n; ++i) {
+              const int row = model.free_index[dofs[i]];
+              if (row < 0) continue;
+              values[std::lower_bound(rows, rows_end, row) - inner] += k(i, j);
+            }
           }
+          continue;
         }
+        // A turning surface: each DOF's row and column go to every column it moves with (TᵀKT).
+        for (int j = 0; j < n; ++j)
+          for_each_column(model, dofs[j], [&](int column, double w_j) {
+            if (column < column_from[t] || column >= column_from[t + 1]) return;
+            const int* rows = inner + outer[column];
+            const int* rows_end = inner + outer[column + 1];
+            for (int i = 0; i < n; ++i)
+              for_each_column(model, dofs[i], [&](int row, double w_i) {
+                values[std::lower_bound(rows, rows_end, row) - inner] += w_i * k(i, j) * w_j;
+              });
+          });
       }
     });
     // The prescribed displacements to the right-hand side, in the serial loop's order.
@@ -211,12 +225,11 @@ void assemble_stiffness(const Model& model, const std::vector<char>& elements, E
       if (!owned[e] && !moves_prescribed[e]) continue;
       dofs_of(e, dofs.data());
       const Eigen::MatrixXd& k = Ke[e - start];
-      for (int i = 0; i < n; ++i) {
-        const int row = model.free_index[dofs[i]];
-        if (row < 0) continue;
-        for (int j = 0; j < n; ++j)
-          if (model.free_index[dofs[j]] < 0) f[row] -= k(i, j) * model.prescribed[dofs[j]];
-      }
+      for (int i = 0; i < n; ++i)
+        for_each_column(model, dofs[i], [&](int row, double w) {
+          for (int j = 0; j < n; ++j)
+            if (model.free_index[dofs[j]] < 0) f[row] -= w * k(i, j) * model.prescribed[dofs[j]];
+        });
     }
   }
 }
@@ -238,14 +251,13 @@ void add_prescribed_forces(const Model& model, Eigen::VectorXd& f) {
         dof_frame_rotated(model, v, npe,
                           element_stiffness(mesh.type(), coordinates.data(), laws[body_of_element(model, e)],
                                             model.scene.body.thickness));
-    for (int i = 0; i < dim * npe; ++i) {
-      const int row = model.free_index[dim * v[i / dim] + i % dim];
-      if (row < 0) continue;
-      for (int j = 0; j < dim * npe; ++j) {
-        const int dof = dim * v[j / dim] + j % dim;
-        if (model.free_index[dof] < 0) f[row] -= k(i, j) * model.prescribed[dof];
-      }
-    }
+    for (int i = 0; i < dim * npe; ++i)
+      for_each_column(model, dim * v[i / dim] + i % dim, [&](int row, double w) {
+        for (int j = 0; j < dim * npe; ++j) {
+          const int dof = dim * v[j / dim] + j % dim;
+          if (model.free_index[dof] < 0) f[row] -= w * k(i, j) * model.prescribed[dof];
+        }
+      });
   }
 }
 

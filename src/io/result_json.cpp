@@ -155,6 +155,16 @@ json reactions_json(const std::vector<Reaction>& reactions, int dim) {
       for (int c = 0; c < dim; ++c) moved.push_back(r.displacement[c] ? number(*r.displacement[c]) : json(nullptr));
       entry["displacement"] = moved;
     }
+    if (r.turns()) {  // a moment: what it carries and how far it turned, as the load gives it (2D: about z)
+      json moment = json::array(), turned = json::array();
+      for (int a = 0; a < 3; ++a) {
+        moment.push_back(r.rotation[a] ? number(r.moment[a]) : json(nullptr));
+        turned.push_back(r.rotation[a] ? number(*r.rotation[a]) : json(nullptr));
+      }
+      entry["moment"] = dim == 2 ? moment[2] : moment;
+      entry["rotation"] = dim == 2 ? turned[2] : turned;
+      entry["about"] = vector_json(r.about, dim);
+    }
     supports.push_back(entry);
   }
   return supports;

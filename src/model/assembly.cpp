@@ -36,10 +36,12 @@ void add_force_loads(const Model& model, Eigen::VectorXd& f) {
     if (!model.frame_of_node.empty() && model.frame_of_node[node] >= 0)
       force = dof_frame(model, node).transpose() * force;
     for (int c = 0; c < dim; ++c)
-      if (model.free_index[dim * node + c] >= 0) f[model.free_index[dim * node + c]] += force[c];
+      for_each_column(model, dim * node + c, [&](int column, double w) { f[column] += w * force[c]; });
   }
-  // A rigid surface's force acts on its one column (Tᵀf: the sum over its nodes is the force).
+  // A rigid surface's force acts on its one column (Tᵀf: the sum over its nodes is the force),
+  // a turning one's moment on its angle's (symmetry planes refuse a moment: no share to take).
   for (const RigidSurface& surface : model.rigid_surfaces) f[surface.column] += rigid_surface_share(model, surface);
+  for (const RigidRotation& turn : model.rigid_rotations) f[turn.column] += turn.moment;
 }
 
 void refuse_unrepresentable(const Model& model, double largest_k, bool k_finite, double largest_f, bool f_finite) {
@@ -88,6 +90,8 @@ void set_step_loads(Model& model, const std::vector<double>& factors, const std:
   for (RigidSurface& surface : model.rigid_surfaces)
     surface.force =
         factors[surface.load] * *model.scene.loads[surface.load].as<RigidForceLoad>()->value[surface.component];
+  for (RigidRotation& turn : model.rigid_rotations)
+    turn.moment = factors[turn.load] * *model.scene.loads[turn.load].as<RigidForceLoad>()->moment[turn.axis];
 }
 
 }  // namespace detail
@@ -124,6 +128,7 @@ Eigen::VectorXd full_displacement(const Model& model, const Eigen::VectorXd& u) 
   Eigen::VectorXd full = model.prescribed;
   for (size_t dof = 0; dof < model.free_index.size(); ++dof)
     if (model.free_index[dof] >= 0) full[dof] = u[model.free_index[dof]];
+  for (const Lever& lever : model.levers) full[lever.dof] += lever.weight * u[lever.column];  // a turning surface
   const int dim = model.dim;
   if (!model.frame_of_node.empty())
     for (int node = 0; node < model.mesh.n_nodes(); ++node)

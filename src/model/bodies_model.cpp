@@ -258,6 +258,15 @@ void append(Model& model, const Model& part, const SceneBody& body, const Scene&
     for (int& node : surface.nodes) node += node_offset;
     model.rigid_surfaces.push_back(std::move(surface));
   }
+  for (RigidRotation turn : part.rigid_rotations) {
+    turn.load += static_cast<int>(model.scene.loads.size());
+    turn.column += model.n_free;
+    for (int& node : turn.nodes) node += node_offset;
+    model.rigid_rotations.push_back(std::move(turn));
+  }
+  const int dof_offset = part.mesh.dim * node_offset;
+  for (Lever lever : part.levers)  // the earlier bodies' DOFs come first: still sorted
+    model.levers.push_back({lever.dof + dof_offset, lever.column + model.n_free, lever.weight});
   model.n_free += part.n_free;
   auto concatenate = [](Eigen::VectorXd& to, const Eigen::VectorXd& from) {
     Eigen::VectorXd joined(to.size() + from.size());

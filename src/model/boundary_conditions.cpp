@@ -107,12 +107,14 @@ void apply_displacement_conditions(Model& model, const Scene& scene, const Eigen
   // carry one get the rotated axes as their DOF frame (a skew boundary condition).
   model.frames.clear();
   model.frame_of_node.clear();
-  if (rotation == Eigen::Matrix3d::Identity()) return;
-  model.frames.push_back(rotation.topLeftCorner(dim, dim));
-  model.frame_of_node.assign(n_nodes, -1);
-  for (int node = 0; node < n_nodes; ++node)
-    for (int c = 0; c < dim; ++c)
-      if (model.free_index[dim * node + c] < 0 || surface_of_dof[dim * node + c] >= 0) model.frame_of_node[node] = 0;
+  if (rotation != Eigen::Matrix3d::Identity()) {
+    model.frames.push_back(rotation.topLeftCorner(dim, dim));
+    model.frame_of_node.assign(n_nodes, -1);
+    for (int node = 0; node < n_nodes; ++node)
+      for (int c = 0; c < dim; ++c)
+        if (model.free_index[dim * node + c] < 0 || surface_of_dof[dim * node + c] >= 0) model.frame_of_node[node] = 0;
+  }
+  turn_rigid_surfaces(model, scene, rotation, nodes_of);
 }
 
 double rigid_surface_share(const Model& model, const RigidSurface& surface) {

@@ -12,7 +12,9 @@
 // mode, which solve() fixes by its stated choice. Every free motion becomes a column of K's null
 // space; whether the contacts do hold the load (or it pulls the body away, and the solve ends
 // unbounded) is the solve's to say.
+#include <Eigen/Geometry>
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 
 #include "contact/contact.hpp"
@@ -32,6 +34,33 @@ Eigen::MatrixXd unseen_combinations(const Eigen::MatrixXd& G, int k) {
   for (long j = 0; j < sigma.size(); ++j)
     if (sigma[j] > 1e-10 * std::max(1.0, largest)) ++rank;
   return svd.matrixV().rightCols(k - rank);
+}
+
+// A turning surface's load on the part's motions (F_j = its work on motion j): its moment's,
+// and its force's at the centre rather than at the first node, where `scene_force` puts it.
+void add_turning_work(const Model& model, const RigidFreedom& freedom, int p, Eigen::VectorXd& F, double& total) {
+  const int dim = model.dim;
+  const PartFreedom& part = freedom.parts[static_cast<size_t>(p)];
+  auto motion = [&](long j, const Eigen::Vector3d& x) { return rigid_motion_at(part, part.null.col(j), x, dim); };
+  for (const RigidRotation& turn : model.rigid_rotations) {
+    if (freedom.part[turn.nodes.front()] != p) continue;
+    const Eigen::Vector3d axis = model.rotation.col(turn.axis);
+    const Eigen::Vector3d across = axis.unitOrthogonal(), third = axis.cross(across);
+    total += std::abs(turn.moment) / part.extent;
+    for (long j = 0; j < F.size(); ++j)  // the angle about the axis: (m(c + b) − m(c))·(axis × b)
+      F[j] += turn.moment * (motion(j, turn.centre + across) - motion(j, turn.centre)).dot(third);
+  }
+  for (const RigidSurface& surface : model.rigid_surfaces) {
+    const int first = surface.nodes.front();
+    if (freedom.part[first] != p) continue;
+    const auto turns = [&](const RigidRotation& turn) { return turn.load == surface.load; };
+    const auto turn = std::find_if(model.rigid_rotations.begin(), model.rigid_rotations.end(), turns);
+    if (turn == model.rigid_rotations.end()) continue;
+    Eigen::Vector3d d = Eigen::Vector3d::Zero();
+    d.head(dim) = dof_frame(model, first).col(surface.component);
+    for (long j = 0; j < F.size(); ++j)
+      F[j] += rigid_surface_share(model, surface) * d.dot(motion(j, turn->centre) - motion(j, model.mesh.nodes[first]));
+  }
 }
 
 }  // namespace
@@ -104,6 +133,7 @@ Eigen::MatrixXd motions_held_by_contact(Model& model, const std::function<Eigen:
       total += f.norm();
       for (int j = 0; j < k; ++j) F[j] += f.dot(motion(j, node));
     }
+    add_turning_work(model, freedom, part_index, F, total);
     const Eigen::MatrixXd unseen = unseen_combinations(G, k);
     if (unseen.cols() > 0 && total > 0) {
       const Eigen::VectorXd drive = unseen.transpose() * F;
@@ -134,6 +164,7 @@ Eigen::MatrixXd free_modes_on_dofs(const Model& model, const Eigen::MatrixXd& at
   const int dim = model.dim;
   const Eigen::MatrixXd Q = model.rotation.topLeftCorner(dim, dim);
   Eigen::MatrixXd R = Eigen::MatrixXd::Zero(model.n_free, at_nodes.cols());
+  Eigen::MatrixXd at_dofs(model.rigid_rotations.empty() ? 0 : at_nodes.rows(), at_nodes.cols());
   for (int node = 0; node < model.mesh.n_nodes(); ++node) {
     const Eigen::MatrixXd frame = dof_frame(model, node);
     for (long j = 0; j < at_nodes.cols(); ++j) {
@@ -141,9 +172,11 @@ Eigen::MatrixXd free_modes_on_dofs(const Model& model, const Eigen::MatrixXd& at
       for (int c = 0; c < dim; ++c) {
         const int column = model.free_index[dim * node + c];
         if (column >= 0) R(column, j) = frame.col(c).dot(global);
+        if (at_dofs.rows() > 0) at_dofs(dim * node + c, j) = frame.col(c).dot(global);
       }
     }
   }
+  if (at_dofs.rows() > 0) fit_turning_surfaces(model, at_dofs, R);  // a turning surface's translations and angles
   return R;
 }
 

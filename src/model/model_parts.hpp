@@ -53,6 +53,14 @@ void apply_displacement_conditions(Model& model, const Scene& local_scene, const
 double rigid_surface_share(const Model& model, const RigidSurface& surface);
 Eigen::VectorXd rigid_surface_forces(const Model& model);
 
+// turning_surfaces.cpp: the force loads with a moment (model.rigid_rotations, model.levers):
+// one column per axis a surface turns about, numbered after every other column (so a scene
+// without a moment keeps its numbering), and each tied DOF's lever arm on it, (frame column
+// c)·(axis × (x − centre)). A turn that moves the tied DOFs only as a translation would (a lever
+// arm of 0, or equal at every node) is an InputError naming the moment.
+void turn_rigid_surfaces(Model& model, const Scene& scene, const Eigen::Matrix3d& rotation,
+                         const NodesOfBoundary& nodes_of);
+
 // rigid_motions.cpp: InputError naming the free motions (translations, rotations about a
 // point in 2D or an axis in 3D) and what would hold them, unless the prescribed DOFs (in their DOF frames)
 // hold every connected part of the mesh against rigid motion. Before any assembly: a free

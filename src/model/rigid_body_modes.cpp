@@ -4,6 +4,8 @@
 // them (docs/linear-solvers.md). Three in 2D, six in 3D.
 #include "rigid_body_modes.hpp"
 
+#include "model_parts.hpp"
+
 #include <algorithm>
 
 namespace contactqp::detail {
@@ -47,6 +49,11 @@ Eigen::MatrixXd rigid_body_modes(const Model& model) {
       const int row = model.free_index[dim * node + c];
       if (row >= 0) modes.row(row) = local.row(c);
     }
+  }
+  if (!model.rigid_rotations.empty()) {  // a turning surface: its translations and angles
+    Eigen::MatrixXd at_dofs(dim * model.mesh.n_nodes(), motions.n_modes());
+    for (int node = 0; node < model.mesh.n_nodes(); ++node) at_dofs.middleRows(dim * node, dim) = motions.at(node);
+    fit_turning_surfaces(model, at_dofs, modes);
   }
   return modes;
 }

@@ -13,6 +13,7 @@
 // [d, ((x − x_c) × d)/ℓ].
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -174,17 +175,21 @@ RigidFreedom rigid_freedom_3d(const Model& model) {
     }
   }
   // A rigid surface moves its nodes alike along its component: a motion that moves two of them
-  // differently along it is held (a rotation that would tilt a surface pushed by a force).
+  // differently along it is held (a rotation that would tilt a surface pushed by a force),
+  // unless the surface turns with it (a moment about that axis: only the other axes are held).
   for (const RigidSurface& surface : model.rigid_surfaces) {
     const int first = surface.nodes.front(), p = part[first];
     const double l = extent[p] > 0 ? extent[p] : 1.0;
     const Eigen::Vector3d d = Eigen::Vector3d(dof_frame(model, first).col(surface.component));
     const Eigen::Vector3d x0 = mesh.nodes[first] - freedom.parts[p].centre;
+    Eigen::Matrix3d held = Eigen::Matrix3d::Identity();
+    for (const RigidRotation& turn : model.rigid_rotations)
+      if (turn.load == surface.load) held -= model.rotation.col(turn.axis) * model.rotation.col(turn.axis).transpose();
     for (int node : surface.nodes) {
       if (part[node] != p) continue;  // a surface over two parts ties them: each part's own rows suffice
       const Eigen::Vector3d x = mesh.nodes[node] - freedom.parts[p].centre;
       Eigen::Matrix<double, 6, 1> row;
-      row << Eigen::Vector3d::Zero(), (x - x0).cross(d) / l;
+      row << Eigen::Vector3d::Zero(), held * (x - x0).cross(d) / l;
       normal[p] += row * row.transpose();
     }
   }
@@ -315,8 +320,10 @@ RigidFreedom rigid_freedom_2d(const Model& model) {
       normal[p] += row * row.transpose();
     }
   }
-  // A rigid surface moves its nodes alike along its component (as in 3D above).
+  // A rigid surface moves its nodes alike along its component (as in 3D above), unless it turns.
   for (const RigidSurface& surface : model.rigid_surfaces) {
+    const auto turns = [&](const RigidRotation& turn) { return turn.load == surface.load; };
+    if (std::any_of(model.rigid_rotations.begin(), model.rigid_rotations.end(), turns)) continue;
     const int first = surface.nodes.front(), p = part[first];
     const double l = extent[p] > 0 ? extent[p] : 1.0;
     const Eigen::Vector2d d = dof_frame(model, first).col(surface.component);

@@ -48,6 +48,8 @@ std::vector<int> distributed_rows(const Model& model, int ranks) {
     const int column = model.free_index[dof];
     if (column >= 0 && part_of_column[column] < 0) part_of_column[column] = part[dof / dim];
   }
+  // A turning surface's angle has no DOF of its own: its surface's first node's part.
+  for (const RigidRotation& turn : model.rigid_rotations) part_of_column[turn.column] = part[turn.nodes.front()];
   // Counting sort of the free columns by their part, stable within a part.
   std::vector<int> start(ranks + 1, 0);
   for (int p : part_of_column) ++start[p + 1];

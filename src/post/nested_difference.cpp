@@ -63,6 +63,7 @@ double distance(const Model& coarse, const Eigen::VectorXd& u_coarse, const Mode
   const detail::PointLocator locator = cell_locator(mesh);
   const int npe = mesh.nodes_per_element();
   Eigen::VectorXd d = Eigen::VectorXd::Zero(fine_qp.n_dofs());
+  Eigen::MatrixXd at_dofs = Eigen::MatrixXd::Zero(fine.rigid_rotations.empty() ? 0 : dim * fine.mesh.n_nodes(), 1);
   for (int node = 0; node < fine.mesh.n_nodes(); ++node) {
     const Eigen::Matrix<double, dim, 1> x = fine.mesh.nodes[node].head<dim>();
     // The element holding x, or the one it lies least outside of (a fine node on a curved side
@@ -97,7 +98,13 @@ double distance(const Model& coarse, const Eigen::VectorXd& u_coarse, const Mode
     for (int c = 0; c < dim; ++c) {
       const int column = fine.free_index[dim * node + c];
       if (column >= 0) d[column] = value[c] - reference[dim * node + c];
+      if (at_dofs.rows() > 0) at_dofs(dim * node + c, 0) = value[c] - reference[dim * node + c];
     }
+  }
+  if (at_dofs.rows() > 0) {  // a turning surface: its translations and angles, fitted to its nodes
+    Eigen::MatrixXd columns = d;
+    fit_turning_surfaces(fine, at_dofs, columns);
+    d = columns.col(0);
   }
   return std::sqrt(std::max(0.0, d.dot(fine_qp.K * d)));
 }

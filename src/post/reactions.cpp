@@ -1,5 +1,6 @@
 // Support reactions: what the prescribed displacements push with.
 #include <algorithm>
+#include <cmath>
 
 #include "contact/contact.hpp"
 #include "contactqp/post.hpp"
@@ -14,7 +15,9 @@ std::vector<Reaction> rigid_surface_reactions(const Model& model, const Eigen::V
   for (size_t l = 0; l < model.scene.loads.size(); ++l) {
     const RigidForceLoad* load = model.scene.loads[l].as<RigidForceLoad>();
     if (!load) continue;
-    Reaction entry{model.scene.loads[l].path, load->boundary, Eigen::Vector3d::Zero(), {}};
+    Reaction entry;
+    entry.load = model.scene.loads[l].path;
+    entry.boundary = load->boundary;
     Eigen::Vector3d along_axes = Eigen::Vector3d::Zero();  // the scene's own axes
     for (const RigidSurface& surface : model.rigid_surfaces) {
       if (surface.load != static_cast<int>(l)) continue;
@@ -23,6 +26,14 @@ std::vector<Reaction> rigid_surface_reactions(const Model& model, const Eigen::V
     }
     entry.force = model.rotation * along_axes;
     if (model.dim == 2) entry.force.z() = 0;
+    for (const RigidRotation& turn : model.rigid_rotations) {
+      if (turn.load != static_cast<int>(l)) continue;
+      entry.moment[turn.axis] = turn.moment;
+      entry.about = model.rotation.transpose() * turn.centre;
+      for (int k = 0; k < 3; ++k)  // turned there and back: round-off, not a place
+        if (std::abs(entry.about[k]) <= 1e-12 * entry.about.norm()) entry.about[k] = 0;
+      if (turn.column < u.size()) entry.rotation[turn.axis] = u[turn.column];
+    }
     out.push_back(entry);
   }
   return out;
@@ -89,7 +100,9 @@ std::vector<Reaction> reactions(const Model& model, const Eigen::VectorXd& u, co
   for (const LoadSpec& load : model.scene.loads) {
     const DisplacementLoad* d = load.as<DisplacementLoad>();
     if (!d) continue;
-    Reaction reaction{load.path, d->boundary, Eigen::Vector3d::Zero()};
+    Reaction reaction;
+    reaction.load = load.path;
+    reaction.boundary = d->boundary;
     for (int node : nodes_of(d->boundary)) reaction.force.head(dim) += residual.segment(dim * node, dim);
     // With symmetry the mirrored parts push the same along the cuts and cancel across them.
     reaction.force = whole_body_sum(model, reaction.force);

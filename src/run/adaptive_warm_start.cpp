@@ -54,6 +54,8 @@ WarmStart::WarmStart(const Model& model, const QuadraticProgram& qp, const Solve
   }
   for (const RigidSurface& surface : model.rigid_surfaces)
     rigid_surface_values_.push_back(surface.column < result.u.size() ? result.u[surface.column] : 0.0);
+  for (const RigidRotation& turn : model.rigid_rotations)
+    rigid_surface_values_.push_back(turn.column < result.u.size() ? result.u[turn.column] : 0.0);
 }
 
 InitialGuess WarmStart::operator()(const Model& model, const QuadraticProgram& qp) const {
@@ -62,7 +64,8 @@ InitialGuess WarmStart::operator()(const Model& model, const QuadraticProgram& q
   const auto body_of = [&](int node) {
     return std::clamp(model.body_of_node(node), 0, static_cast<int>(bodies_.size()) - 1);
   };
-  if (global_frames_ && model.frame_of_node.empty() && model.rigid_surfaces.size() == rigid_surface_values_.size()) {
+  if (global_frames_ && model.frame_of_node.empty() &&
+      model.rigid_surfaces.size() + model.rigid_rotations.size() == rigid_surface_values_.size()) {
     guess.u = Eigen::VectorXd::Zero(qp.n_dofs());
     for (int n = 0; n < model.mesh.n_nodes(); ++n) {
       const Body& body = bodies_[body_of(n)];
@@ -75,6 +78,10 @@ InitialGuess WarmStart::operator()(const Model& model, const QuadraticProgram& q
     for (std::size_t s = 0; s < model.rigid_surfaces.size(); ++s) {
       const int column = model.rigid_surfaces[s].column;
       if (column >= 0 && column < guess.u.size()) guess.u[column] = rigid_surface_values_[s];
+    }
+    for (std::size_t r = 0; r < model.rigid_rotations.size(); ++r) {  // a turning surface's angles
+      const int column = model.rigid_rotations[r].column;
+      if (column < guess.u.size()) guess.u[column] = rigid_surface_values_[model.rigid_surfaces.size() + r];
     }
   }
   // λ_i = p(x_i) / (the pressure of a unit λ_i): the row's tributary (and thickness) as

@@ -32,7 +32,7 @@ class WarmStart {
   int dim_ = 2;
   bool global_frames_ = true;
   std::vector<Body> bodies_;
-  std::vector<double> rigid_surface_values_;  // the rigid surfaces' DOFs, in model order
+  std::vector<double> rigid_surface_values_;  // the rigid surfaces' DOFs, then their angles, in model order
 };
 
 }  // namespace contactqp::detail

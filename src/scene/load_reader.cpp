@@ -39,6 +39,33 @@ Load read_components(JsonObject& load, std::string boundary, int dim) {
   return spec;
 }
 
+// A force load's "moment" (2D: a number, about z; 3D: [Mx, My, Mz], null where the surface
+// does not turn) and "about", the point it is taken about.
+void read_moment(JsonObject& load, int dim, RigidForceLoad& spec) {
+  if (load.has("moment")) {
+    const nlohmann::json& value = load.value("moment");
+    const std::string path = load.path_of("moment");
+    if (dim == 2) {
+      if (!value.is_number())
+        throw InputError(path, "= " + describe(value) + ": must be a number, the moment about z (0: free to turn)");
+      spec.moment[2] = as_number(value, path);
+    } else {
+      if (!value.is_array() || value.size() != 3)
+        throw InputError(
+            path, "= " + describe(value) + ": must be [Mx, My, Mz], a component null where the surface does not turn");
+      for (int a = 0; a < 3; ++a)
+        if (!value[a].is_null()) spec.moment[a] = as_number(value[a], path + "[" + std::to_string(a) + "]");
+      if (!spec.turns())
+        throw InputError(path, "= [null, null, null]: give at least one component (0: free to turn about that axis)");
+    }
+  }
+  if (load.has("about")) {
+    if (!spec.turns())
+      throw InputError(load.path_of("about"), "is the point a moment is taken about: give \"moment\" too");
+    spec.about = read_vector(load.value("about"), load.path_of("about"), dim);
+  }
+}
+
 GravityLoad read_gravity(JsonObject& load, const BodySpec& body, int dim) {
   GravityLoad spec;
   spec.density = load.number("density");
@@ -92,7 +119,9 @@ LoadSpec read_load(JsonObject load, const BodySpec& body, int dim) {
   if (type == "displacement") {
     spec.kind = read_components<DisplacementLoad>(load, std::move(boundary), dim);
   } else if (type == "force") {
-    spec.kind = read_components<RigidForceLoad>(load, std::move(boundary), dim);
+    RigidForceLoad force = read_components<RigidForceLoad>(load, std::move(boundary), dim);
+    read_moment(load, dim, force);
+    spec.kind = std::move(force);
   } else if (type == "traction") {
     spec.kind = TractionLoad{std::move(boundary), read_vector(load.value("value"), load.path_of("value"), dim)};
   } else if (type == "pressure") {

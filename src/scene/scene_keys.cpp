@@ -46,10 +46,12 @@ Format::Format() {
   load.keys = {must("type"), {"name"}};
   load.selector = "type";
   load.variants = {
-      {"displacement", {must("boundary"), must("value")}}, {"traction", {must("boundary"), must("value")}},
-      {"pressure", {must("boundary"), must("value")}},     {"gravity", {must("density"), must("g"), {"region"}}},
+      {"displacement", {must("boundary"), must("value")}},
+      {"traction", {must("boundary"), must("value")}},
+      {"pressure", {must("boundary"), must("value")}},
+      {"gravity", {must("density"), must("g"), {"region"}}},
       {"point", {must("value"), {"at"}, {"point"}}},  // "at" or "point"
-      {"force", {must("boundary"), must("value")}},
+      {"force", {must("boundary"), must("value"), {"moment"}, {"about"}}},
   };
 
   obstacle.keys = {must("type"), {"friction", &friction}};

@@ -91,6 +91,9 @@ void check_symmetry(const Scene& scene) {
                load.path + " ties the rigid surface along " + axis + " (F" + axis + " = " + format_value(*r->value[c]) +
                    "; give null: the plane holds " + axis + ")",
                plane);
+      // A turning surface's mirror image turns the other way (its tilt out of the plane).
+      if (const auto* r = load.as<RigidForceLoad>(); r && r->turns())
+        broken(scene.body, load.path + " has a moment (the rigid surface turns)", plane);
       const Eigen::Vector3d* along = nullptr;  // a traction and g must be parallel to the plane
       if (const auto* t = load.as<TractionLoad>()) along = &t->traction;
       if (const auto* g = load.as<GravityLoad>()) along = &g->g;

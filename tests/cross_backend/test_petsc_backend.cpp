@@ -165,8 +165,10 @@ TEST_CASE("K in rank shares: the shares of two ranks sum to the whole K, f stays
   if (!petsc_backend_built_in()) return;
   // On one process the two shares are assembled one after the other, the second on the rows
   // the first chose: what the two ranks of `mpirun -n 2` hold after their one collective
-  // partition. two-cylinders-force: a rigid surface's DOFs share one column, which gets one row.
-  for (const char* scene : {"scenes/hertz.json", "scenes/hertz-sphere.json", "scenes/two-cylinders-force.json"}) {
+  // partition. two-cylinders-force: a rigid surface's DOFs share one column, which gets one row;
+  // block-moment: a turning surface's angle, a column with no DOF of its own, gets one too.
+  for (const char* scene : {"scenes/hertz.json", "scenes/hertz-sphere.json", "scenes/two-cylinders-force.json",
+                            "scenes/block-moment.json"}) {
     INFO(scene);
     Model model = build_model(load_scene(source_path(scene)));
     const QuadraticProgram whole = assemble_qp(model);
