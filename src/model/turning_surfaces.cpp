@@ -77,7 +77,6 @@ void turn_rigid_surfaces(Model& model, const Scene& scene, const Eigen::Matrix3d
             [](const Lever& a, const Lever& b) { return a.dof != b.dof ? a.dof < b.dof : a.column < b.column; });
 }
 
-
 }  // namespace contactqp::detail
 
 namespace contactqp {

@@ -182,11 +182,21 @@ SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& lay
   } else {
     // Tresca: one solve with the QP's thresholds. Coulomb: the fixed point of Tresca solves
     // (coulomb_fixed_point.hpp), each on the same bound form with the radii μ λ_N of the one
-    // before (its set-up again: the hierarchy is not kept across them). The counts and times
-    // reported are the sums over the Tresca solves.
+    // before, in one chain (petsc_bound_qp.hpp): A goes into PETSc and its hierarchy is set up
+    // once, and each solve starts from the last one's answer. The counts and times reported are
+    // the sums over the Tresca solves.
     BoundQpResult sums;
+    BoundQpChain chain;
     const auto tresca = [&](const VectorXd& radii, const SolveOptions& step_options) {
-      BoundQp problem = form.problem;
+      // The form without A, then A for the chain's first solve only: the later ones find it in
+      // PETSc already.
+      BoundQp problem;
+      {
+        Eigen::SparseMatrix<double> A = std::move(form.problem.A);
+        problem = form.problem;
+        form.problem.A = std::move(A);
+      }
+      if (!chain.links) problem.A = form.problem.A;
       problem.radius = radii;
       if (step_options.initial.lambda.size() == qp.n_constraints()) {
         problem.start_lambda = step_options.initial.lambda;
@@ -200,7 +210,7 @@ SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& lay
       step.friction_residual = [&](const VectorXd& v, const VectorXd& mu, const VectorXd& lambda_t) {
         return relative_residual(qp, layout, VectorXd(form.Q * v), mu, &lambda_t, &radii);
       };
-      solved = solve_bound_qp_petsc(std::move(problem), step);
+      solved = solve_bound_qp_petsc(std::move(problem), step, &chain);
       sums.krylov_iterations += solved.krylov_iterations;
       sums.linear_solves += solved.linear_solves;
       sums.preconditioner_setups += solved.preconditioner_setups;

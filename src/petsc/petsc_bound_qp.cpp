@@ -411,7 +411,15 @@ class HierarchySolver final : public LinearSolver {
 
 // The primal-dual active-set loop with one hierarchy kept across its steps (bound_pdas.hpp),
 // on this rank's rows; v and μ whole on every rank for the caller's residual and the result.
-void solve_kept(Work& work, const BoundQp& problem, const BoundQpOptions& options, BoundQpResult& result) {
+// What a chain of solves keeps (BoundQpChain): A in PETSc, and the last solve's hierarchy,
+// answer and active set, where the next starts.
+struct ChainLinks {
+  std::shared_ptr<Work> work;
+  BoundPdasResult last;
+};
+
+void solve_kept(Work& work, const BoundQp& problem, const BoundQpOptions& options, BoundQpResult& result,
+                ChainLinks* links) {
   const int m = static_cast<int>(problem.bounded.size());
   PetscBoundQp qp;
   qp.A = work.A;
@@ -462,8 +470,10 @@ void solve_kept(Work& work, const BoundQp& problem, const BoundQpOptions& option
       }
     }
   }
+  // A later solve of a chain keeps the hierarchy: no P1 level to build again.
+  const bool chained = links && links->last.solver_of_A;
   CoarseLevel coarse;
-  if (problem.coarse_interpolation.cols() > 0) {
+  if (problem.coarse_interpolation.cols() > 0 && !chained) {
     CoarseLevelInput input;
     input.interpolation = &problem.coarse_interpolation;
     input.modes = &problem.coarse_near_null_space;
@@ -512,7 +522,14 @@ void solve_kept(Work& work, const BoundQp& problem, const BoundQpOptions& option
     };
   BoundPdasResult solved;
   bool options_error = false;
-  if (PetscErrorCode code = solve_bound_pdas(qp, settings, &solved, &options_error)) {
+  WarmStart start;
+  if (chained) {
+    start.solver_of_A = links->last.solver_of_A;
+    start.v = links->last.v;
+    start.active_bounds = links->last.active_bounds;
+    start.multigrid = links->last.multigrid;
+  }
+  if (PetscErrorCode code = solve_bound_pdas(qp, settings, &solved, &options_error, chained ? &start : nullptr)) {
     work.options_error = options_error;
     check_bound_qp(code, options_error ? "the preconditioner's set-up" : "the active-set loop");
   }
@@ -552,6 +569,7 @@ void solve_kept(Work& work, const BoundQp& problem, const BoundQpOptions& option
   check_bound_qp(MatCreateVecs(work.A, &state->x, &state->rhs), "MatCreateVecs");
   check_bound_qp(VecScatterCreateToAll(state->x, &state->to_all, &state->x_all), "VecScatterCreateToAll");
   result.solver_of_A = std::make_shared<HierarchySolver>(state, 1.0);
+  if (links) links->last = std::move(solved);
 }
 
 // TAO's bound-constrained methods on the same problem.
@@ -616,20 +634,27 @@ void solve_tao(Work& work, const BoundQp& problem, const BoundQpOptions& options
 
 }  // namespace
 
-BoundQpResult solve_bound_qp_petsc(BoundQp problem, const BoundQpOptions& options) {
+BoundQpResult solve_bound_qp_petsc(BoundQp problem, const BoundQpOptions& options, BoundQpChain* chain) {
   if (options.method != "pdas" && options.method != "tao")
     throw InputError("method", "= \"" + options.method + "\": not a method of the petsc backend; valid: pdas, tao");
   BoundQpResult result;
   bool options_error = false;
-  const int n = static_cast<int>(problem.A.rows());
+  const auto* chained = chain ? static_cast<const ChainLinks*>(chain->links.get()) : nullptr;
+  const int n = chained ? chained->work->n : static_cast<int>(problem.A.rows());
   {
     std::lock_guard<std::mutex> lock(petsc_mutex());
     PetscRuntime& runtime = PetscRuntime::instance(options.petsc_options);
     runtime.use_options(options.petsc_options);
     const long generation = runtime.generation();
-    Work work;
-    work.n = n;
-    work.order = RowOrder(problem.distributed_row);
+    // A chain's later solve: its A in PETSc, already there.
+    ChainLinks* links = chain ? static_cast<ChainLinks*>(chain->links.get()) : nullptr;
+    const std::shared_ptr<Work> kept = links ? links->work : nullptr;
+    const std::shared_ptr<Work> owned = kept ? kept : std::make_shared<Work>();
+    Work& work = *owned;
+    if (!kept) {
+      work.n = n;
+      work.order = RowOrder(problem.distributed_row);
+    }
     std::string failure;
     // Every rank learns whether any failed and the lowest failing rank's message, by the runs'
     // one protocol (agree_on_failure(), processes.hpp), so that all take the same branch: a rank
@@ -644,7 +669,7 @@ BoundQpResult solve_bound_qp_petsc(BoundQp problem, const BoundQpOptions& option
     };
     Stopwatch clock;
     try {
-      assemble(work, problem);
+      if (!kept) assemble(work, problem);
     } catch (const PetscFailure& error) {
       failure = error.message;
     }
@@ -655,8 +680,17 @@ BoundQpResult solve_bound_qp_petsc(BoundQp problem, const BoundQpOptions& option
       try {
         if (problem.n_directions > 0 && !(options.method == "pdas" && options.kept_hierarchy))
           throw PetscFailure{"friction is solved by method=pdas with hierarchy=kept (the defaults) only"};
+        if (chain && !(options.method == "pdas" && options.kept_hierarchy))
+          throw PetscFailure{"a chain of solves keeps the hierarchy: method=pdas with hierarchy=kept only"};
+        if (chain && !links) {  // the chain's first solve: what it keeps from here on
+          links = new ChainLinks{owned, {}};
+          chain->links = std::shared_ptr<void>(links, [](void* p) {
+            const std::lock_guard<std::mutex> lock(petsc_mutex());  // PETSc objects freed one caller at a time
+            delete static_cast<ChainLinks*>(p);
+          });
+        }
         if (options.method == "pdas" && options.kept_hierarchy)
-          solve_kept(work, problem, options, result);
+          solve_kept(work, problem, options, result, links);
         else if (options.method == "pdas")
           solve_pdas(work, problem, options, result);
         else

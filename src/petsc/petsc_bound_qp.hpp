@@ -112,10 +112,20 @@ struct BoundQpResult {
   std::string multigrid;  // levels, grid and operator complexity of the hierarchy
 };
 
+// Successive solves of one A whose friction radii and offsets change (Coulomb's Tresca solves),
+// with the same chain passed to each: the first puts A into PETSc and sets up its hierarchy;
+// each later one keeps both (no set-up: preconditioner_setups 0) and starts from the last
+// answer and active set (bound_pdas.hpp's WarmStart), as a load step starts from the one
+// before. A, b, the bounds and the layout must not change along a chain; a later solve needs no
+// A (problem.A may be empty). The method must be pdas with the kept hierarchy.
+struct BoundQpChain {
+  std::shared_ptr<void> links;  // petsc_bound_qp.cpp's: A in PETSc and the last solve; null before the first
+};
+
 // Never throws on a numerical failure (status and message say it); InputError for bad PETSc
 // options or an unknown method. Collective: every rank calls it with the same problem (or its
 // share of A). Takes the problem by value and frees its Eigen A once PETSc holds the matrix:
 // at 1e6 DOFs that copy is a gigabyte the iteration does not need.
-BoundQpResult solve_bound_qp_petsc(BoundQp problem, const BoundQpOptions& options);
+BoundQpResult solve_bound_qp_petsc(BoundQp problem, const BoundQpOptions& options, BoundQpChain* chain = nullptr);
 
 }  // namespace contactqp::detail

@@ -26,7 +26,7 @@ namespace contactqp::detail {
 
 // The table the plugin's one exported symbol returns. `abi` must equal kPetscPluginAbi: a plugin
 // from another build of contactqp is refused rather than called with other struct layouts.
-inline constexpr int kPetscPluginAbi = 1;
+inline constexpr int kPetscPluginAbi = 2;
 struct PetscPlugin {
   int abi = 0;
   // mpi.hpp
@@ -40,7 +40,7 @@ struct PetscPlugin {
   std::shared_ptr<const LinearSolver> (*make_petsc_solver)(const Eigen::SparseMatrix<double>& A,
                                                            const LinearSolverOptions& options,
                                                            const MatrixLayout& layout) = nullptr;
-  BoundQpResult (*solve_bound_qp_petsc)(BoundQp problem, const BoundQpOptions& options) = nullptr;
+  BoundQpResult (*solve_bound_qp_petsc)(BoundQp problem, const BoundQpOptions& options, BoundQpChain* chain) = nullptr;
   std::vector<int> (*partition_graph)(const std::vector<long>& offsets, const std::vector<int>& neighbours, int parts,
                                       const std::string& petsc_options) = nullptr;
   // distributed/run_distributed.hpp

@@ -55,8 +55,8 @@ std::shared_ptr<const LinearSolver> make_petsc_solver(const Eigen::SparseMatrix<
   return plugin().make_petsc_solver(A, options, layout);
 }
 
-BoundQpResult solve_bound_qp_petsc(BoundQp problem, const BoundQpOptions& options) {
-  return plugin().solve_bound_qp_petsc(std::move(problem), options);
+BoundQpResult solve_bound_qp_petsc(BoundQp problem, const BoundQpOptions& options, BoundQpChain* chain) {
+  return plugin().solve_bound_qp_petsc(std::move(problem), options, chain);
 }
 
 RunReport run_distributed(const Scene& scene, const RunOptions& options) {

@@ -29,7 +29,7 @@ std::shared_ptr<const LinearSolver> make_petsc_solver(const Eigen::SparseMatrix<
   not_built();
 }
 
-BoundQpResult solve_bound_qp_petsc(BoundQp, const BoundQpOptions&) { not_built(); }
+BoundQpResult solve_bound_qp_petsc(BoundQp, const BoundQpOptions&, BoundQpChain*) { not_built(); }
 
 }  // namespace contactqp::detail
 

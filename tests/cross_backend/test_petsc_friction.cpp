@@ -42,6 +42,8 @@ void check_petsc_against_active_set(Scene scene) {
   CHECK(petsc.result.diagnostics.at("stick_nodes") == reference.result.diagnostics.at("stick_nodes"));
   CHECK(petsc.result.diagnostics.at("slip_nodes") == reference.result.diagnostics.at("slip_nodes"));
   CHECK(petsc.result.diagnostics.at("fixed_point_steps") >= 1);
+  // One hierarchy for all the Tresca solves of the last step's fixed point (BoundQpChain).
+  CHECK(petsc.result.diagnostics.at("preconditioner_setups") == 1);
 }
 
 }  // namespace

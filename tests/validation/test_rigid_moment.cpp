@@ -169,7 +169,7 @@ TEST_CASE("a moment along a load path: the angle grows with it and the last step
     for (const Reaction& r : path.steps[k].reactions)
       if (r.turns()) top = &r;
     REQUIRE(top != nullptr);
-    CHECK(top->moment.z() == Approx(factor * 0.002).epsilon(1e-15));  // the step's share of the moment
+    CHECK(top->moment.z() == Approx(factor * 0.002).epsilon(1e-15));   // the step's share of the moment
     CHECK(*top->rotation[2] == Approx(factor * angle).epsilon(1e-8));  // the whole base presses: linear
   }
 }
