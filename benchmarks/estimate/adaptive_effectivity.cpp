@@ -70,7 +70,8 @@ int main(int argc, char** argv) {
                    R"({"size": 0.1, "contact_size": 0.1, "grading": null, "order": 2})", 0.005, 250000}};
     std::ofstream csv(bench::output_path(arguments.out, "adaptive_effectivity.csv"));
     csv << "scene,cycle,dofs,reference_dofs,estimate,relative,true_error,effectivity\n";
-    std::printf("| scene | cycle | DOFs | η/sqrt(2E) | true error | η | effectivity |\n|---|---|---|---|---|---|---|\n");
+    std::printf(
+        "| scene | cycle | DOFs | η/sqrt(2E) | true error | η | effectivity |\n|---|---|---|---|---|---|---|\n");
     for (const Family& family : families) {
       // The whole run first: its cycles, and its last one the reference.
       const RunReport whole = run_scene(patched(family.scene, adaptive_scene(family, 30)));
