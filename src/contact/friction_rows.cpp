@@ -116,7 +116,8 @@ Eigen::VectorXd tangential_positions(const Model& model, const Eigen::VectorXd& 
   for (size_t r = 0; r < rows.size(); ++r)
     for (const auto& [dof, value] : rows[r].entries) {
       if (model.free_index[dof] < 0) position[r] += value * model.prescribed[dof];
-      for_each_column(model, dof, [&](int column, double w) { position[r] += value * w * u[column]; });
+      const double coefficient = value;  // C++17 lambdas cannot capture a structured binding
+      for_each_column(model, dof, [&](int column, double w) { position[r] += coefficient * w * u[column]; });
     }
   return position;
 }
@@ -140,9 +141,12 @@ void add_friction_rows(const Model& model, QuadraticProgram& qp) {
   const std::vector<TangentialRow> rows = tangential_rows(model);
   std::vector<Eigen::Triplet<double>> entries;
   for (size_t r = 0; r < rows.size(); ++r)
-    for (const auto& [dof, value] : rows[r].entries)
-      for_each_column(model, dof,
-                      [&](int column, double w) { entries.emplace_back(static_cast<int>(r), column, w * value); });
+    for (const auto& [dof, value] : rows[r].entries) {
+      const double coefficient = value;  // C++17 lambdas cannot capture a structured binding
+      for_each_column(model, dof, [&](int column, double w) {
+        entries.emplace_back(static_cast<int>(r), column, w * coefficient);
+      });
+    }
   block.T.resize(static_cast<Eigen::Index>(rows.size()), qp.n_dofs());
   block.T.setFromTriplets(entries.begin(), entries.end());
   block.T.makeCompressed();
