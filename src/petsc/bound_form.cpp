@@ -28,7 +28,8 @@ Eigen::MatrixXd with_complement(const Eigen::MatrixXd& rows) {
 
 }  // namespace
 
-bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, BoundForm& form, std::string& message) {
+bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, BoundForm& form, std::string& message,
+                     bool with_operator) {
   const int n = qp.n_dofs(), m = qp.n_constraints();
   // The rows that become variables: B's, then with friction T's (row m + i·nd + k is contact
   // row i's k-th tangential direction). A block is one contact row's rows: its normal row and,
@@ -272,12 +273,13 @@ bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, Bou
   Q_inv.setFromTriplets(Q_inverse.begin(), Q_inverse.end());
 
   const SparseMatrix QT = form.Q.transpose();
-  const SparseMatrix A = QT * qp.K * form.Q;
-  problem.A = 0.5 * (A + SparseMatrix(A.transpose()));  // exactly symmetric, for CG and MAT_SYMMETRIC
-  problem.A.prune(0.0);
   problem.A_is_rank_share = layout.share;            // QᵀK_rQ sums to QᵀKQ: Q is the same on every rank
   problem.distributed_row = layout.distributed_row;  // v is indexed like u
   problem.b = QT * qp.f;
+  if (!with_operator) return true;
+  const SparseMatrix A = QT * qp.K * form.Q;
+  problem.A = 0.5 * (A + SparseMatrix(A.transpose()));  // exactly symmetric, for CG and MAT_SYMMETRIC
+  problem.A.prune(0.0);
   if (qp.near_null_space.rows() == n) problem.near_null_space = Q_inv * qp.near_null_space;
   if (n_coarse) {
     for (int c = 0; c < n_coarse; ++c)

@@ -29,6 +29,9 @@ struct BoundForm {
 // False with `message` set when a group's rows are linearly dependent (the bound form needs
 // independent rows at each node; the other backends accept such rows). `layout` says where
 // qp.K's rows are (whole, or a rank's share), and so where A's are: v is indexed like u.
-bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, BoundForm& form, std::string& message);
+// Without `with_operator`, no A, near-null space or P1 level (problem.A etc. empty): what a
+// solve that continues a chain needs (petsc_bound_qp.hpp, BoundQpChain), whose A is in PETSc.
+bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, BoundForm& form, std::string& message,
+                     bool with_operator = true);
 
 }  // namespace contactqp::detail

@@ -9,6 +9,8 @@
 #include "petsc_backend.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <utility>
 
 #include "backend_options.hpp"
@@ -64,10 +66,19 @@ BoundQpOptions backend_settings(const SolveOptions& options) {
 
 // K⁻¹ r = Q A⁻¹ Qᵀ r (A = QᵀKQ): the contact solve's solver of A serves certify()'s θ, so that
 // the solve sets up one preconditioner in all.
+//
+// It also carries the solve's chain (petsc_bound_qp.hpp: A in PETSc, its hierarchy and the last
+// answer) to the next solve of a QP with the same A: load steps pass the step's K_factor to the
+// next step (run.hpp), whose solve then sets up nothing. `fingerprint` names that A (of_form()).
 class SolverOfK final : public LinearSolver {
  public:
-  SolverOfK(std::shared_ptr<const LinearSolver> of_A, std::shared_ptr<const SparseMatrix> Q)
-      : of_A_(std::move(of_A)), Q_(std::move(Q)) {}
+  SolverOfK(std::shared_ptr<const LinearSolver> of_A, std::shared_ptr<const SparseMatrix> Q,
+            std::shared_ptr<BoundQpChain> chain = nullptr, std::uint64_t fingerprint = 0)
+      : of_A_(std::move(of_A)), Q_(std::move(Q)), chain_(std::move(chain)), fingerprint_(fingerprint) {}
+  // The chain, when it was made for a QP of this fingerprint; else null.
+  std::shared_ptr<BoundQpChain> chain_for(std::uint64_t fingerprint) const {
+    return chain_ && chain_->links && fingerprint == fingerprint_ ? chain_ : nullptr;
+  }
   bool ok() const override { return of_A_->ok(); }
   const std::string& message() const override { return of_A_->message(); }
   int size() const override { return of_A_->size(); }
@@ -77,13 +88,58 @@ class SolverOfK final : public LinearSolver {
 
  protected:
   std::shared_ptr<const LinearSolver> scaled_solver(double c) const override {
-    return std::make_shared<SolverOfK>(of_A_->scaled(c), Q_);
+    // The chain stays: its A is that of the problem the backend saw (solve() scales K by the
+    // same factor on the way in, and the fingerprint tells when it does not).
+    return std::make_shared<SolverOfK>(of_A_->scaled(c), Q_, chain_, fingerprint_);
   }
 
  private:
   std::shared_ptr<const LinearSolver> of_A_;
   std::shared_ptr<const SparseMatrix> Q_;
+  std::shared_ptr<BoundQpChain> chain_;
+  std::uint64_t fingerprint_ = 0;
 };
+
+// What the bound form's A depends on, hashed: K, B, the friction rows and the layout (load steps
+// change f, g and the friction offsets and radii, never these). One pass over K's entries, a
+// small fraction of the set-up a match saves. K in rank shares: every rank must take the same
+// branch, so a mismatch on any rank is a mismatch on all (collective then).
+std::uint64_t of_form(const QuadraticProgram& qp, const MatrixLayout& layout) {
+  std::uint64_t h = 1469598103934665603ULL;
+  const auto mix = [&h](std::uint64_t word) { h = (h ^ word) * 1099511628211ULL + (h >> 29); };
+  const auto mix_matrix = [&mix](const SparseMatrix& M) {
+    mix(static_cast<std::uint64_t>(M.rows()));
+    mix(static_cast<std::uint64_t>(M.cols()));
+    for (int j = 0; j < M.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(M, j); it; ++it) {
+        std::uint64_t bits;
+        const double value = it.value();
+        std::memcpy(&bits, &value, sizeof bits);
+        mix((static_cast<std::uint64_t>(it.row()) << 32) ^ static_cast<std::uint64_t>(j));
+        mix(bits);
+      }
+  };
+  mix_matrix(qp.K);
+  mix_matrix(qp.B);
+  if (!qp.friction.empty()) mix_matrix(qp.friction.T);
+  mix(layout.share ? 1 : 0);
+  for (const int row : layout.distributed_row) mix(static_cast<std::uint64_t>(row));
+  return h;
+}
+
+// The chain a solve of `qp` continues: the one options.K_factor carries, when it was made for
+// the same A on every rank; else a new one.
+std::shared_ptr<BoundQpChain> chain_to_continue(const SolveOptions& options, std::uint64_t fingerprint,
+                                                const MatrixLayout& layout) {
+  const auto* before = dynamic_cast<const SolverOfK*>(options.K_factor.get());
+  std::shared_ptr<BoundQpChain> chain = before ? before->chain_for(fingerprint) : nullptr;
+  if (layout.share) {
+    double missing = chain ? 0 : 1;
+    sum_over_ranks(&missing, 1);
+    if (missing > 0) chain.reset();
+  }
+  return chain ? chain : std::make_shared<BoundQpChain>();
+}
 
 // The relative KKT residual of certificate.hpp without stationarity (which the inner solves
 // hold): primal violation / L, negative multipliers / F, complementarity / (F L). K u sums the
@@ -143,8 +199,16 @@ std::string how_solved(const QuadraticProgram& qp, const BoundQpResult& solved, 
 SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, const SolveOptions& options) {
   SolveResult result;
   Stopwatch clock;
+  BoundQpOptions settings = backend_settings(options);
+  // The kept hierarchy's solves form one chain with the solve options.K_factor comes from, when
+  // that one solved the same A (a load step after the first): A stays in PETSc, its hierarchy
+  // is not set up again, and the loop starts from that answer. The form is then made without A.
+  const bool kept = settings.method == "pdas" && settings.kept_hierarchy;
+  const std::uint64_t fingerprint = kept ? of_form(qp, layout) : 0;
+  const std::shared_ptr<BoundQpChain> chain = kept ? chain_to_continue(options, fingerprint, layout) : nullptr;
+  const bool continued = chain && chain->links;
   BoundForm form;
-  if (!make_bound_form(qp, layout, form, result.message)) {
+  if (!make_bound_form(qp, layout, form, result.message, !continued)) {
     result.status = Status::NumericalError;
     result.u = VectorXd::Zero(qp.n_dofs());
     result.lambda = VectorXd::Zero(qp.n_constraints());
@@ -152,7 +216,6 @@ SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& lay
   }
   result.timings.add("transform", clock.seconds());
 
-  BoundQpOptions settings = backend_settings(options);
   const bool friction = form.problem.n_directions > 0;
   if (friction && !(settings.method == "pdas" && settings.kept_hierarchy))
     throw InputError("backend_options", "method=" + settings.method +
@@ -176,7 +239,7 @@ SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& lay
   BoundQpResult solved;
   std::string fixed_point_message;  // Coulomb: what the fixed point reports
   if (!friction) {
-    solved = solve_bound_qp_petsc(std::move(form.problem), settings);
+    solved = solve_bound_qp_petsc(std::move(form.problem), settings, chain.get());
     // A friction block that exerts no force (μ = 0, thresholds 0): the frictionless answer, λ_T = 0.
     if (!qp.friction.empty()) result.lambda_t = VectorXd::Zero(qp.friction.T.rows());
   } else {
@@ -186,7 +249,6 @@ SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& lay
     // once, and each solve starts from the last one's answer. The counts and times reported are
     // the sums over the Tresca solves.
     BoundQpResult sums;
-    BoundQpChain chain;
     const auto tresca = [&](const VectorXd& radii, const SolveOptions& step_options) {
       // The form without A, then A for the chain's first solve only: the later ones find it in
       // PETSc already.
@@ -196,7 +258,7 @@ SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& lay
         problem = form.problem;
         form.problem.A = std::move(A);
       }
-      if (!chain.links) problem.A = form.problem.A;
+      if (!chain->links) problem.A = form.problem.A;
       problem.radius = radii;
       if (step_options.initial.lambda.size() == qp.n_constraints()) {
         problem.start_lambda = step_options.initial.lambda;
@@ -210,7 +272,7 @@ SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& lay
       step.friction_residual = [&](const VectorXd& v, const VectorXd& mu, const VectorXd& lambda_t) {
         return relative_residual(qp, layout, VectorXd(form.Q * v), mu, &lambda_t, &radii);
       };
-      solved = solve_bound_qp_petsc(std::move(problem), step, &chain);
+      solved = solve_bound_qp_petsc(std::move(problem), step, chain.get());
       sums.krylov_iterations += solved.krylov_iterations;
       sums.linear_solves += solved.linear_solves;
       sums.preconditioner_setups += solved.preconditioner_setups;
@@ -288,8 +350,8 @@ SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& lay
   if (options.K_factor) {
     result.K_factor = options.K_factor;
   } else if (solved.solver_of_A && solved.solver_of_A->ok()) {
-    result.K_factor =
-        std::make_shared<SolverOfK>(solved.solver_of_A, std::make_shared<const SparseMatrix>(std::move(form.Q)));
+    result.K_factor = std::make_shared<SolverOfK>(
+        solved.solver_of_A, std::make_shared<const SparseMatrix>(std::move(form.Q)), chain, fingerprint);
   } else {
     LinearSolverOptions settings_of_K = linear_solver_options(qp, options);
     settings_of_K.kind = LinearSolverKind::Petsc;

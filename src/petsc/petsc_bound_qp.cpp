@@ -669,7 +669,10 @@ BoundQpResult solve_bound_qp_petsc(BoundQp problem, const BoundQpOptions& option
     };
     Stopwatch clock;
     try {
-      if (!kept) assemble(work, problem);
+      if (!kept)
+        assemble(work, problem);
+      else if (problem.b.size() == work.n)  // a load step along the chain: its own b
+        work.set(work.b, problem.b);
     } catch (const PetscFailure& error) {
       failure = error.message;
     }

@@ -112,12 +112,14 @@ struct BoundQpResult {
   std::string multigrid;  // levels, grid and operator complexity of the hierarchy
 };
 
-// Successive solves of one A whose friction radii and offsets change (Coulomb's Tresca solves),
-// with the same chain passed to each: the first puts A into PETSc and sets up its hierarchy;
-// each later one keeps both (no set-up: preconditioner_setups 0) and starts from the last
-// answer and active set (bound_pdas.hpp's WarmStart), as a load step starts from the one
-// before. A, b, the bounds and the layout must not change along a chain; a later solve needs no
-// A (problem.A may be empty). The method must be pdas with the kept hierarchy.
+// Successive solves of one A whose b, bounds, friction radii and offsets change (Coulomb's
+// Tresca solves, and the load steps of a path: petsc_backend.cpp carries the chain from one
+// step's solve to the next in its solver of K), with the same chain passed to each: the first
+// puts A into PETSc and sets up its hierarchy; each later one keeps both (no set-up:
+// preconditioner_setups 0), takes its own b (problem.b) and bounds, and starts from the last
+// answer and active set (bound_pdas.hpp's WarmStart). A, the bounded rows and the layout must
+// not change along a chain; a later solve needs no A (problem.A may be empty). The method must
+// be pdas with the kept hierarchy.
 struct BoundQpChain {
   std::shared_ptr<void> links;  // petsc_bound_qp.cpp's: A in PETSc and the last solve; null before the first
 };
