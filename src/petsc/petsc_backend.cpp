@@ -265,9 +265,13 @@ SolveResult solve_bound_form(const QuadraticProgram& qp, const MatrixLayout& lay
         problem.start_lambda_t = step_options.initial.lambda_t;
       }
       BoundQpOptions step = settings;
-      // From a warm start's states the first step is solved at the final rule: loose steps are
-      // there to find the states, which the start already gives.
-      if (problem.start_lambda.size() > 0) step.inexact = false;
+      // A warm start that only gives states (a caller's, or a chain's first solve) starts the
+      // loop's x at 0, and a loose first step from there would undo the states it gives: that
+      // step is solved at the final rule. Along a chain the loop starts from the last answer, x
+      // and states, and takes loose steps while its states change (Coulomb's later radii, a load
+      // step's new loads): on mindlin-spheres.json the last step's Krylov iterations fell from
+      // 1 104 to 372 (docs/friction-backends.md).
+      if (problem.start_lambda.size() > 0 && !chain->links) step.inexact = false;
       step.tol = step_options.tol;
       step.friction_residual = [&](const VectorXd& v, const VectorXd& mu, const VectorXd& lambda_t) {
         return relative_residual(qp, layout, VectorXd(form.Q * v), mu, &lambda_t, &radii);
