@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 #include "qp/friction_sets.hpp"
@@ -49,6 +50,18 @@ bool make_bound_form(const QuadraticProgram& qp, const MatrixLayout& layout, Bou
     C_columns.resize(M, n);
     C_columns.setFromTriplets(entries.begin(), entries.end());
   }
+  // Round-off is no coefficient. A tangent of a node on a symmetry plane, along the plane's
+  // prescribed direction, left 1e-32 on the node's free DOFs (mindlin-spheres.json at 7.8e5
+  // DOFs): a row of nothing but round-off, with no DOF of its own to pivot on, sent the whole
+  // contact zone (14 553 rows on 29 358 DOFs) to one dense change of variables, whose QR had not
+  // ended after 10 minutes and 8.4 GB per rank (and whose rows would then have been refused as
+  // dependent, as a small case is: tests/unit/test_bound_form.cpp). The rows' coefficients are
+  // unit vectors times interpolation weights, O(1): what is 1e-12 of the largest is dropped (it
+  // moves the rows by less than any tolerance a solve can reach), and such a row has no variable.
+  double largest = 0;
+  for (int j = 0; j < C_columns.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(C_columns, j); it; ++it) largest = std::max(largest, std::abs(it.value()));
+  C_columns.prune(largest, 1e-12);
   const auto block_of = [m, nd](int row) { return row < m ? row : (row - m) / nd; };
   // Rows that share a column belong to one group (union-find over C's columns).
   std::vector<int> parent(M);

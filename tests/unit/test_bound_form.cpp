@@ -128,3 +128,45 @@ TEST_CASE("the bound form of two bodies in contact: exact rows, as sparse as K, 
     CHECK(on_coarse_level > 0);
   }
 }
+
+TEST_CASE("the bound form: a tangential row of round-off leaves the other nodes' changes their own", "[petsc]") {
+  // The first case's three node-against-face rows, with Tresca friction (one direction each).
+  // Node 2's tangent lies along a prescribed direction: on its free DOFs only round-off is left
+  // (as a node on a symmetry plane gave, 1e-32, on mindlin-spheres.json refined to 7.8e5 DOFs).
+  // Round-off is no coefficient: that row has no variable (λ_T = 0 there), and every node keeps
+  // a change of variables on its own DOFs. Before, the row had no DOF of its own to pivot on, the
+  // whole group went to one dense change (at scale a QR over the whole contact zone), and here
+  // its rows were refused as linearly dependent.
+  const std::vector<std::vector<std::pair<int, double>>> rows = {
+      {{0, 0.6}, {1, 0.8}, {6, -0.3}, {7, -0.4}, {8, -0.3}, {9, -0.4}},
+      {{2, 0.6}, {3, 0.8}, {8, -0.3}, {9, -0.4}, {10, -0.3}, {11, -0.4}},
+      {{4, 0.6}, {5, 0.8}, {10, -0.3}, {11, -0.4}, {6, -0.3}, {7, -0.4}}};
+  QuadraticProgram qp = small_qp(12, rows);
+  const std::vector<std::vector<std::pair<int, double>>> tangents = {
+      {{0, -0.8}, {1, 0.6}, {6, 0.4}, {7, -0.3}, {8, 0.4}, {9, -0.3}},
+      {{2, -0.8}, {3, 0.6}, {8, 0.4}, {9, -0.3}, {10, 0.4}, {11, -0.3}},
+      {{4, 3e-33}, {5, -4e-33}, {10, 2e-33}, {11, 1e-33}}};
+  std::vector<Eigen::Triplet<double>> t;
+  for (std::size_t i = 0; i < tangents.size(); ++i)
+    for (const auto& [j, value] : tangents[i]) t.emplace_back(static_cast<int>(i), j, value);
+  qp.friction.law = FrictionLaw::Tresca;
+  qp.friction.n_directions = 1;
+  qp.friction.T.resize(3, 12);
+  qp.friction.T.setFromTriplets(t.begin(), t.end());
+  qp.friction.offset = VectorXd::Zero(3);
+  qp.friction.threshold = VectorXd::Constant(3, 0.05);
+  const detail::BoundForm form = bound_form_of(qp);
+  check_rows_select(qp.B * form.Q, qp.B, form.problem.bounded);
+  // Nodes 0 and 1: normal and tangent on their two DOFs; node 2: the normal only.
+  CHECK(form.problem.bounded == std::vector<int>{0, 2, 4});
+  REQUIRE(form.problem.tangential.size() == 3);
+  CHECK(form.problem.tangential[0] == 1);
+  CHECK(form.problem.tangential[1] == 3);
+  CHECK(form.problem.tangential[2] == -1);
+  // The face keeps its DOFs, and a node's DOFs depend on no other node's.
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> Q_rows = form.Q;
+  for (int j = 6; j < 12; ++j) CHECK((VectorXd(Q_rows.row(j).transpose()) - VectorXd::Unit(12, j)).norm() == 0);
+  for (int i = 0; i < 6; ++i)
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(Q_rows, i); it; ++it)
+      if (it.col() < 6) CHECK(it.col() / 2 == i / 2);
+}
