@@ -61,6 +61,15 @@ run_ctest() {
 # sanitizer's runtime, not a finding, which 8 reruns of that test did not repeat. Only when the
 # log shows that crash are the tests that failed run once more (ctest --rerun-failed); any
 # failure of that run, and any run without that crash, fails the stage as before.
+#
+# Since the suite of stop 57, two tests (each run alone in build-asan/tests, whatever the code
+# of the petsc backend: checked with the commit before) crash the tracer every time, while
+# scanning a dynamic TLS block of garbage bounds ("DTLS 17 at 0x2eb4-0x400003fb6",
+# LSAN_OPTIONS=verbosity=1): clang 14's LeakSanitizer misreading glibc's thread vector, which
+# moves with the binary's layout. Without TLS scanning (use_tls=0) the leak check reports the
+# dynamic loader's own tables as leaks instead. So a test whose rerun crashes the tracer again,
+# and whose log shows nothing else (no sanitizer report, no failed assertion), runs a third
+# time with the leak check off, every other check on; it must pass, and the script names it.
 run_ctest_sanitized() {
   dir=$1
   shift
@@ -70,7 +79,21 @@ run_ctest_sanitized() {
     total=$(sed -n 's/^[0-9]*% tests passed, [0-9]* tests failed out of \([0-9]*\)$/\1/p' "$log")
     echo "run-tests: LeakSanitizer's tracer crashed at a test's exit: the failed tests once more"
     ctest --test-dir "$dir" --output-on-failure --rerun-failed 2>&1 | tee "$log"
-    if grep -q "^100% tests passed, 0 tests failed out of" "$log"; then count=$total; fi
+    if grep -q "^100% tests passed, 0 tests failed out of" "$log"; then
+      count=$total
+    else
+      failed=$(sed -n 's/^[0-9]*% tests passed, \([0-9]*\) tests failed out of [0-9]*$/\1/p' "$log")
+      crashes=$(grep -c "LeakSanitizer has encountered a fatal error" "$log" || true)
+      if [ -n "$failed" ] && [ "$crashes" = "$failed" ] &&
+        ! grep -q "ERROR: AddressSanitizer\|ERROR: LeakSanitizer\|runtime error:\|: FAILED:" "$log"; then
+        echo "run-tests: LeakSanitizer's tracer crashed again at the exit of:"
+        sed -n 's/^[[:space:]]*[0-9]* - \(.*\) (.*)$/  \1/p' "$log"
+        echo "run-tests: these once more with the leak check off (AddressSanitizer and UBSan on)"
+        ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" ctest --test-dir "$dir" --output-on-failure --rerun-failed 2>&1 |
+          tee "$log"
+        if grep -q "^100% tests passed, 0 tests failed out of" "$log"; then count=$total; fi
+      fi
+    fi
   fi
   [ -n "$count" ] || { echo "run-tests: ctest in $dir did not pass" >&2; exit 1; }
   passed=$((passed + count))
