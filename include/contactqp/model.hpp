@@ -34,10 +34,13 @@ struct Candidate {
   int body = 0;         // the body the node belongs to
   int other_body = -1;  // the body of the face (pairs)
   int face = -1;        // the face's index in its boundary (pairs)
+  // The other side's nodes in the row and their weights, summing to 1: N_j(ξ) of one face
+  // (node-to-face rows), or the mortar weights M_ij / D_i over the faces the node's share of its
+  // side overlaps (ContactPair::rows, docs/bodies.md).
   int n_face_nodes = 0;
-  std::array<int, 6> face_nodes{{-1, -1, -1, -1, -1, -1}};
-  std::array<double, 6> weights{{0, 0, 0, 0, 0, 0}};  // N_j(ξ), summing to 1
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();   // the face's outward unit normal at ξ (global axes)
+  std::vector<int> face_nodes;
+  std::vector<double> weights;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // the face's outward unit normal at ξ (global axes)
   // Pairs: the common normal at ξ, (n_face − n_node)/|…| from the two sides' smoothed normals,
   // the line along which the node met its partner: the frame of the friction rows, whose
   // tangents must not see the gap close (on curved sides n leans off it); zero for obstacles.

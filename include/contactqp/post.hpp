@@ -185,6 +185,7 @@ struct PairContact {
   std::string node_side, face_side;  // "roller.arc": the side whose nodes carry the rows, and the other
   int node_body = -1, face_body = -1;
   std::string side_rule;                                         // why the nodes are on that side
+  std::string rows = "node_to_face";                             // or "mortar" (ContactPair::rows)
   Eigen::Vector3d force_on_node_body = Eigen::Vector3d::Zero();  // the face side's push on the node side
   Eigen::Vector3d force_on_face_body = Eigen::Vector3d::Zero();  // and the reaction
   double action_reaction = 0;  // |F_node + F_face| / max(|F_node|, |F_face|): 0 up to round-off

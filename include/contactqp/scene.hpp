@@ -246,10 +246,17 @@ struct SceneBody {
 };
 
 // A pair of boundaries of two bodies that may touch: {"pair": ["roller.surface", "block.top"]}.
+// How a pair's rows tie the node side to the face side (docs/bodies.md, "Mortar rows").
+enum class PairRows {
+  NodeToFace,  // each node against the closest point of one face (node-to-segment in 2D)
+  Mortar,      // each node's share of its side against the faces it overlaps (dual mortar)
+};
+
 struct ContactPair {
   std::string path;  // "contact[0]"
   int body[2] = {-1, -1};
   std::string boundary[2];
+  PairRows rows = PairRows::NodeToFace;
   std::optional<double> max_gap;         // the pair's candidate distance; default follows from the loads
   std::optional<FrictionSpec> friction;  // between the two sides; none: frictionless
 };

@@ -87,6 +87,9 @@ model's), for the thickness in 2D; the same numbers as the result JSON's pairs[i
       .def_property_readonly(
           "side_rule", [](const PairView& v) { return v.pair().side_rule; }, "why the nodes are on that side")
       .def_property_readonly(
+          "rows", [](const PairView& v) { return v.pair().rows; },
+          "\"node_to_face\" or \"mortar\": how the pair's rows tie the two sides (contact.rows)")
+      .def_property_readonly(
           "force_on_node_body", [](const PairView& v) { return head(v.pair().force_on_node_body, v.dim()); },
           "the face side's push on the node side's body: sum lam_i n_i (global axes, dim entries)")
       .def_property_readonly(

@@ -19,6 +19,7 @@ def pair_as_json(pair, dim):
         "node_side": pair.node_side,
         "face_side": pair.face_side,
         "side_rule": pair.side_rule,
+        "rows": pair.rows,
         "force_on_node_body": pair.force_on_node_body.tolist(),
         "force_on_face_body": pair.force_on_face_body.tolist(),
         "action_reaction_residual": pair.action_reaction_residual,

@@ -149,10 +149,11 @@ std::string summary_table(const RunReport& report) {
     out += format("  body         %s: %s, E = %g, nu = %g, %d nodes\n", body.name.c_str(),
                   body.scene.body.shape.c_str(), body.scene.material.E, body.scene.material.nu, body.n_nodes);
   for (const PairContact& pair : report.pairs) {
-    out += format("  pair         %s (nodes, %s) on %s: force on %s (%.6g, %.6g%s), action-reaction residual %.2e\n",
-                  pair.node_side.c_str(), pair.side_rule.c_str(), pair.face_side.c_str(),
-                  model.bodies[pair.node_body].name.c_str(), pair.force_on_node_body.x(), pair.force_on_node_body.y(),
-                  solid ? format(", %.6g", pair.force_on_node_body.z()).c_str() : "", pair.action_reaction);
+    out += format("  pair         %s (nodes, %s%s) on %s: force on %s (%.6g, %.6g%s), action-reaction residual %.2e\n",
+                  pair.node_side.c_str(), pair.side_rule.c_str(), pair.rows == "mortar" ? ", mortar rows" : "",
+                  pair.face_side.c_str(), model.bodies[pair.node_body].name.c_str(), pair.force_on_node_body.x(),
+                  pair.force_on_node_body.y(), solid ? format(", %.6g", pair.force_on_node_body.z()).c_str() : "",
+                  pair.action_reaction);
     if (solid)
       out += format(
           "               radius a = %.6g (last node %.6g), area %.6g, max pressure %.6g (other side %.6g), %d nodes\n",

@@ -104,6 +104,14 @@ double smallest_face_size(const Mesh& mesh, const std::string& boundary);
 std::vector<Candidate> select_pair_candidates(const Mesh& mesh, const std::string& node_boundary,
                                               const std::string& face_boundary, double max_gap);
 
+// mortar_rows.cpp: the pair's rows as mortar rows (ContactPair::rows, docs/bodies.md): each
+// candidate node of `node_boundary` gets the weights M_ij / D_i over the faces of
+// `face_boundary` that its share of its side overlaps, the mean normal there, the gap of its
+// node against that weighted partner, and D_i = ∫N_i over the side's linear pieces as its
+// tributary. A node whose share reaches beyond the other side keeps its node-to-face row.
+void make_mortar_rows(const Mesh& mesh, const std::string& node_boundary, const std::string& face_boundary,
+                      std::vector<Candidate>& candidates);
+
 // Drops candidates with no free DOF along the obstacle normal (their position is prescribed):
 // they add no unknown. InputError when such a prescribed position penetrates the obstacle.
 void remove_prescribed_candidates(Model& model);

@@ -346,16 +346,14 @@ std::vector<Candidate> select_pair_candidates(const Mesh& mesh, const std::strin
     if (hit.projection.vertex >= 0) {
       const int vertex = face.nodes[hit.projection.vertex];
       candidate.n_face_nodes = 1;
-      candidate.face_nodes[0] = vertex;
-      candidate.weights[0] = 1.0;
+      candidate.face_nodes = {vertex};
+      candidate.weights = {1.0};
       candidate.normal = vertex_normal.at(vertex);
       candidate.gap = (x - mesh.nodes[vertex]).dot(candidate.normal);
     } else {
       candidate.n_face_nodes = face.n_nodes;
-      for (int j = 0; j < face.n_nodes; ++j) {
-        candidate.face_nodes[j] = face.nodes[j];
-        candidate.weights[j] = hit.projection.weights[j];
-      }
+      candidate.face_nodes.assign(face.nodes.begin(), face.nodes.begin() + face.n_nodes);
+      candidate.weights.assign(hit.projection.weights.begin(), hit.projection.weights.begin() + face.n_nodes);
       candidate.normal = hit.projection.normal;
       candidate.gap = (x - hit.projection.point).dot(candidate.normal);
     }

@@ -336,6 +336,7 @@ std::string result_json(const RunReport& report) {
       json entry = {{"node_side", pair.node_side},
                     {"face_side", pair.face_side},
                     {"side_rule", pair.side_rule},
+                    {"rows", pair.rows},
                     {"force_on_node_body", vector_json(pair.force_on_node_body, dim)},
                     {"force_on_face_body", vector_json(pair.force_on_face_body, dim)},
                     {"action_reaction_residual", number(pair.action_reaction)},

@@ -414,6 +414,7 @@ Model build_bodies_model(const Scene& scene, const BuildOptions& options) {
     model.pair_sides.push_back(sides);
     const int n = sides.node_side;
     std::vector<Candidate> found = select_pair_candidates(model.mesh, side[n], side[1 - n], max_gap);
+    if (pair.rows == PairRows::Mortar) make_mortar_rows(model.mesh, side[n], side[1 - n], found);
     const double depth = std::isfinite(max_gap) ? max_gap : 0.0;
     const bool frictional = pair.friction && (pair.friction->coefficient > 0 || pair.friction->threshold > 0);
     for (Candidate& c : found) {

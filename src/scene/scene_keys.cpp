@@ -67,7 +67,7 @@ Format::Format() {
   obstacle.variant_dims = {{"circle", 2}, {"profile", 2}, {"sphere", 3}, {"cylinder", 3}, {"punch", 3}};
 
   // One body: the boundary that may touch. Several bodies: a list of pairs and boundaries.
-  contact.keys = {{"boundary"}, {"max_gap"}, {"pair"}, {"friction", &friction}};
+  contact.keys = {{"boundary"}, {"max_gap"}, {"pair"}, {"rows"}, {"friction", &friction}};
   transform.keys = {must("rotate_degrees"), must("axis", nullptr, 3)};
   // "options" holds the backend's own keys, which the backend checks (--backend-option).
   // "petsc_options": PETSc's options database entries, as --petsc-options (the PETSc room reads it).

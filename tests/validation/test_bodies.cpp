@@ -187,6 +187,9 @@ TEST_CASE("bad two-body input: exit 2, one line naming the field, nothing writte
        "rigidly (translation in y)",
        "\"mirror\": true", "\"mirror\": true, \"offset\": [0.0, -0.05]"},
       {"\"mirror\": true", "\"mirror\": true, \"offset\": [0.0, 0.05]", "contact"},  // overlapping
+      {"\"base.arc\"]", "\"base.arc\"], \"rows\": \"mortr\"", "contact.rows"},       // unknown rows
+      // mortar rows with friction (not yet: test_mortar.cpp, docs/bodies.md)
+      {"\"base.arc\"]", "\"base.arc\"], \"rows\": \"mortar\", \"friction\": {\"coefficient\": 0.3}", "contact.rows"},
   };
   for (const Bad& bad : cases) {
     TemporaryDirectory directory;
