@@ -29,16 +29,16 @@ namespace contactqp::detail {
 namespace {
 
 // A linear piece of a node-side face: its nodes and their reference coordinates on the face.
-struct Piece {
+struct LinearPiece {
   int n = 0;  // 2 (a segment, 2D) or 3 (a triangle, 3D)
   int node[3] = {-1, -1, -1};
   Eigen::Vector2d at[3] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
 };
 
-std::vector<Piece> pieces_of(const BoundaryFace& face, int dim) {
+std::vector<LinearPiece> pieces_of(const BoundaryFace& face, int dim) {
   const auto& v = face.nodes;
   auto piece = [&](std::initializer_list<int> local) {
-    Piece p;
+    LinearPiece p;
     for (int k : local) {
       p.node[p.n] = v[k];
       p.at[p.n] = dim == 2 ? Eigen::Vector2d(k == 0 ? 0.0 : (k == 1 ? 1.0 : 0.5), 0.0) : reference_node(k);
@@ -47,14 +47,14 @@ std::vector<Piece> pieces_of(const BoundaryFace& face, int dim) {
     return p;
   };
   if (dim == 2)
-    return face.n_nodes == 3 ? std::vector<Piece>{piece({0, 2}), piece({2, 1})} : std::vector{piece({0, 1})};
+    return face.n_nodes == 3 ? std::vector<LinearPiece>{piece({0, 2}), piece({2, 1})} : std::vector{piece({0, 1})};
   if (face.n_nodes == 3) return {piece({0, 1, 2})};
   return {piece({0, 3, 5}), piece({1, 4, 3}), piece({2, 5, 4}), piece({3, 4, 5})};
 }
 
 // A quadrature point of a piece: its barycentric coordinates on the piece and its share of the
 // piece's reference measure (the shares sum to 1).
-struct PiecePoint {
+struct LinearPiecePoint {
   double L[3];
   double share;
 };
@@ -63,9 +63,9 @@ struct PiecePoint {
 // six points each (Dunavant's degree-4 rule). Exact for ψ_i N_k on the piece (degree 3 on a
 // quadratic face); the integrand of M has kinks where the other side's faces meet, which the
 // many points integrate to a small fraction of D_i (the patch test, docs/bodies.md).
-const std::vector<PiecePoint>& piece_rule(int dim) {
-  static const std::vector<PiecePoint> segment = [] {
-    std::vector<PiecePoint> out;
+const std::vector<LinearPiecePoint>& piece_rule(int dim) {
+  static const std::vector<LinearPiecePoint> segment = [] {
+    std::vector<LinearPiecePoint> out;
     const int n = 8;
     const double gauss = 0.5 / std::sqrt(3.0);
     for (int i = 0; i < n; ++i)
@@ -75,8 +75,8 @@ const std::vector<PiecePoint>& piece_rule(int dim) {
       }
     return out;
   }();
-  static const std::vector<PiecePoint> triangle = [] {
-    std::vector<PiecePoint> out;
+  static const std::vector<LinearPiecePoint> triangle = [] {
+    std::vector<LinearPiecePoint> out;
     const int n = 4;
     const QuadraturePoint* rule = nullptr;
     const int points = triangle_rule(2, rule);  // weights sum to ½
@@ -99,15 +99,15 @@ const std::vector<PiecePoint>& piece_rule(int dim) {
 
 // The face at reference coordinates `at`: its point, its measure per reference measure
 // (|dx/dt| in 2D, |∂x/∂ξ × ∂x/∂η| in 3D) and its own shape functions' values there.
-struct FacePoint {
+struct ShareFacePoint {
   Eigen::Vector3d x;
   double measure = 0;
   Eigen::VectorXd N;
 };
-FacePoint face_point(const Mesh& mesh, const BoundaryFace& face, const Eigen::Vector2d& at) {
+ShareFacePoint face_point(const Mesh& mesh, const BoundaryFace& face, const Eigen::Vector2d& at) {
   const auto& x = mesh.nodes;
   const auto& v = face.nodes;
-  FacePoint out;
+  ShareFacePoint out;
   if (mesh.dim == 2) {
     const Eigen::Vector3d* m = face.n_nodes == 3 ? &x[v[2]] : nullptr;
     const EdgePoint e = edge_point(at[0], x[v[0]], x[v[1]], m);
@@ -131,11 +131,11 @@ FacePoint face_point(const Mesh& mesh, const BoundaryFace& face, const Eigen::Ve
   return out;
 }
 
-struct Box {
+struct FaceBox {
   Eigen::Vector3d lo, hi;
 };
-Box box_of(const Mesh& mesh, const BoundaryFace& face) {
-  Box b{mesh.nodes[face.nodes[0]], mesh.nodes[face.nodes[0]]};
+FaceBox box_of(const Mesh& mesh, const BoundaryFace& face) {
+  FaceBox b{mesh.nodes[face.nodes[0]], mesh.nodes[face.nodes[0]]};
   for (int k = 1; k < face.n_nodes; ++k) {
     b.lo = b.lo.cwiseMin(mesh.nodes[face.nodes[k]]);
     b.hi = b.hi.cwiseMax(mesh.nodes[face.nodes[k]]);
@@ -147,7 +147,7 @@ Box box_of(const Mesh& mesh, const BoundaryFace& face) {
 // the row's terms (M_ij on the other side's nodes, −D_ik = −∫ψ_i N_k on its own side's: on a
 // linear face D_ik = δ_ik S_i, on a quadratic one not), and the L_i-weighted mean of the other
 // side's normal.
-struct Share {
+struct MortarShare {
   double dual = 0;
   std::map<int, double> weight;
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
@@ -162,15 +162,15 @@ void make_mortar_rows(const Mesh& mesh, const std::string& node_boundary, const 
   const auto other_faces = mesh.boundaries.find(face_boundary);
   if (candidates.empty() || node_faces == mesh.boundaries.end() || other_faces == mesh.boundaries.end()) return;
   const int dim = mesh.dim;
-  std::map<int, Share> shares;  // candidate node → its share
+  std::map<int, MortarShare> shares;  // candidate node → its share
   double largest_gap = 0;
   for (const Candidate& c : candidates) {
     shares[c.node];
     largest_gap = std::max(largest_gap, std::abs(c.gap));
   }
-  std::vector<Box> other_boxes;
+  std::vector<FaceBox> other_boxes;
   for (const BoundaryFace& face : other_faces->second) other_boxes.push_back(box_of(mesh, face));
-  const std::vector<PiecePoint>& rule = piece_rule(dim);
+  const std::vector<LinearPiecePoint>& rule = piece_rule(dim);
   std::vector<BoundaryFace> near;  // the other side's faces near one face of the node side
   std::vector<int> near_index;
   for (const BoundaryFace& face : node_faces->second) {
@@ -180,7 +180,7 @@ void make_mortar_rows(const Mesh& mesh, const std::string& node_boundary, const 
     // The other side's faces that a closest point of this face can lie on: within the largest
     // gap of it (and its size, for the curvature between its nodes), nearest first, so that
     // closest_face() passes over the rest by their boxes.
-    const Box box = box_of(mesh, face);
+    const FaceBox box = box_of(mesh, face);
     const double margin = (box.hi - box.lo).norm() + largest_gap;
     const Eigen::Vector3d centre = 0.5 * (box.lo + box.hi);
     std::vector<std::pair<double, int>> order;
@@ -196,13 +196,13 @@ void make_mortar_rows(const Mesh& mesh, const std::string& node_boundary, const 
       near_index.push_back(f);
     }
     const double reference_measure = dim == 2 ? 1.0 : 0.5;  // of the whole face
-    const std::vector<Piece> pieces = pieces_of(face, dim);
+    const std::vector<LinearPiece> pieces = pieces_of(face, dim);
     const double piece_measure = reference_measure / static_cast<double>(pieces.size());
-    for (const Piece& piece : pieces) {
-      for (const PiecePoint& q : rule) {
+    for (const LinearPiece& piece : pieces) {
+      for (const LinearPiecePoint& q : rule) {
         Eigen::Vector2d at = Eigen::Vector2d::Zero();
         for (int k = 0; k < piece.n; ++k) at += q.L[k] * piece.at[k];
-        const FacePoint point = face_point(mesh, face, at);
+        const ShareFacePoint point = face_point(mesh, face, at);
         const Eigen::Vector3d& x = point.x;
         const double w = q.share * piece_measure * point.measure;
         const ClosestFace hit = near.empty() ? ClosestFace{} : closest_face(mesh.nodes, near, dim, x);
@@ -212,13 +212,13 @@ void make_mortar_rows(const Mesh& mesh, const std::string& node_boundary, const 
           // leans along the side instead of across it.
           const Eigen::Vector3d offset = x - hit.projection.point;
           const Eigen::Vector3d& n = hit.projection.normal;
-          const Box& b = other_boxes[static_cast<std::size_t>(near_index[static_cast<std::size_t>(hit.face)])];
+          const FaceBox& b = other_boxes[static_cast<std::size_t>(near_index[static_cast<std::size_t>(hit.face)])];
           off = (offset - offset.dot(n) * n).norm() > 0.25 * (b.hi - b.lo).norm();
         }
         for (int k = 0; k < piece.n; ++k) {
           const auto share = shares.find(piece.node[k]);
           if (share == shares.end()) continue;
-          Share& s = share->second;
+          MortarShare& s = share->second;
           const double L = q.L[k], psi = dim == 2 ? 3 * L - 1 : 4 * L - 1;
           if (off) {
             s.off = true;
@@ -234,7 +234,7 @@ void make_mortar_rows(const Mesh& mesh, const std::string& node_boundary, const 
     }
   }
   for (Candidate& c : candidates) {
-    Share& s = shares.at(c.node);
+    MortarShare& s = shares.at(c.node);
     if (s.off || !(s.dual > 0) || !(s.normal.norm() > 0)) continue;  // keeps node-to-face
     // Divided by S_i, the row's own term is 1 and λ_i the force it carries: the node's own
     // D_ii / S_i, short of 1 on a quadratic face, is made up by the node in the list.
