@@ -24,11 +24,6 @@ std::optional<double> boundary_curvature(const BodySpec& body, const std::string
   return std::nullopt;
 }
 
-// Whether a node is one of the body's (a mortar row lists nodes of its own side too).
-bool in_body(const ModelBody& body, int node) {
-  return node >= body.first_node && node < body.first_node + body.n_nodes;
-}
-
 // A mesh body's side of a pair, fitted through the nodes that carry the pair's force (their
 // initial positions): the node side's loaded nodes, or the faces those nodes press on. A
 // candidate's normal is its face's outward one, from the face side towards the node side.
@@ -50,9 +45,9 @@ std::optional<double> fitted_side_curvature(const Model& model, const PairContac
       points.push_back(model.mesh.nodes[p.node]);
       continue;
     }
-    const ModelBody& face_body = model.bodies[contact.face_body];
+    // A mortar row lists nodes of its own side too: only the face side's are fitted.
     for (int j = 0; j < c.n_face_nodes; ++j)
-      if (in_body(face_body, c.face_nodes[j]) && taken.insert(c.face_nodes[j]).second)
+      if (model.body_of_node(c.face_nodes[j]) == contact.face_body && taken.insert(c.face_nodes[j]).second)
         points.push_back(model.mesh.nodes[c.face_nodes[j]]);
   }
   return fitted_curvature(points, model.dim, towards);
@@ -189,7 +184,7 @@ std::vector<PairContact> summarize_pairs(const Model& model, const QuadraticProg
       for (int j = 0; j < c.n_face_nodes; ++j) {
         // A mortar row's terms on its own side (a quadratic face's) sum to zero: the force λ_i
         // n is the node side's, what the other side's terms carry the face side's.
-        if (!in_body(model.bodies[contact.face_body], c.face_nodes[j])) continue;
+        if (model.body_of_node(c.face_nodes[j]) != contact.face_body) continue;
         on_face -= lambda[i] * c.weights[j] * c.normal;
         face_force[c.face_nodes[j]] += lambda[i] * c.weights[j];
       }
