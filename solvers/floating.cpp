@@ -3,7 +3,6 @@
 
 #include <Eigen/LU>
 #include <Eigen/QR>
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -14,6 +13,7 @@
 #include "contactqp/certificate.hpp"
 #include "contactqp/errors.hpp"
 #include "contactqp/number_format.hpp"
+#include "qp/dense_decompositions.hpp"
 #include "qp/no_solution.hpp"
 #include "qp/norms.hpp"
 

@@ -1,6 +1,6 @@
 #include "spectrum.hpp"
+#include "qp/dense_decompositions.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 

@@ -11,7 +11,6 @@
 // run is a row with status max_iterations, like a diverged run is a row with status diverged.
 // plot.py draws the figures from these CSVs alone.
 #include <CLI/CLI.hpp>
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -28,6 +27,7 @@
 #include "contactqp/number_format.hpp"
 #include "contactqp/solve.hpp"
 #include "context.hpp"
+#include "qp/dense_decompositions.hpp"
 
 using namespace contactqp;
 

@@ -13,12 +13,12 @@
 // space; whether the contacts do hold the load (or it pulls the body away, and the solve ends
 // unbounded) is the solve's to say.
 #include <Eigen/Geometry>
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 
 #include "contact/contact.hpp"
 #include "model_parts.hpp"
+#include "qp/dense_decompositions.hpp"
 
 namespace contactqp::detail {
 namespace {

@@ -1,9 +1,8 @@
 #include "fitted_curvature.hpp"
+#include "qp/dense_decompositions.hpp"
 
 #include <algorithm>
 #include <cmath>
-
-#include <Eigen/SVD>
 
 namespace contactqp {
 

@@ -1,7 +1,6 @@
 // Evidence of a QP without solution (no_solution.hpp).
 #include "no_solution.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
@@ -10,6 +9,7 @@
 
 #include "contactqp/cholesky.hpp"
 #include "nnls.hpp"
+#include "qp/dense_decompositions.hpp"
 
 namespace contactqp::detail {
 namespace {

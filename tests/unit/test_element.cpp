@@ -1,10 +1,10 @@
 // Element stiffness: rigid-body modes carry no energy, and the constant-strain patch test;
 // the mixed formulation's element (body.formulation "mixed") likewise, and free of locking.
-#include <Eigen/Eigenvalues>
 #include <catch2/catch.hpp>
 #include <cmath>
 
 #include "contactqp/model.hpp"
+#include "qp/dense_decompositions.hpp"
 
 using namespace contactqp;
 

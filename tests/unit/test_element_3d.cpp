@@ -1,12 +1,12 @@
 // 3D element stiffness (4- and 10-node tetrahedra): six rigid-body modes carry no energy, the
 // constant-strain patch test, the consistent body force, and the same kernel as 2D for dim = 2.
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 #include <cmath>
 
 #include "contactqp/model.hpp"
 #include "mesh/shape_functions.hpp"
+#include "qp/dense_decompositions.hpp"
 
 using namespace contactqp;
 

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "lcp.hpp"
+#include "qp/dense_decompositions.hpp"
 #include "test_support.hpp"
 
 using namespace contactqp;

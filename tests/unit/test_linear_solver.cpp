@@ -9,6 +9,7 @@
 #include "contactqp/errors.hpp"
 #include "contactqp/model.hpp"
 #include "contactqp/solve.hpp"
+#include "qp/dense_decompositions.hpp"
 #include "test_support.hpp"
 
 using namespace contactqp;

@@ -1,7 +1,6 @@
 // Uzawa's step ρ: the spectrum estimate of S = B K⁻¹ Bᵀ against spectra known analytically,
 // the automatic step against the analytic optimum, divergence above ρ_max, the accelerated
 // variant against plain Uzawa and exact solutions, and the --rho options through the CLI.
-#include <Eigen/Eigenvalues>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
@@ -13,6 +12,7 @@
 #include "contactqp/cholesky.hpp"
 #include "contactqp/model.hpp"
 #include "contactqp/solve.hpp"
+#include "qp/dense_decompositions.hpp"
 #include "test_support.hpp"
 
 using namespace contactqp;
