@@ -10,11 +10,13 @@
 # Options:
 #   --kernels "CORE:THREADS ..."  run the numeric entries again under each OpenBLAS kernel CORE
 #                  (OPENBLAS_CORETYPE) with THREADS BLAS threads (OPENBLAS_NUM_THREADS): the first
-#                  in stage 2 (the sanitizer build's suite runs under it) and, for the entries
-#                  that stage leaves out (label heavy), after stage 1's suite; each further one
-#                  after stage 1's suite, every numeric entry. A kernel this CPU cannot run is
-#                  skipped with a line. Default "Prescott:1" (the oldest kernels, one thread:
-#                  stage 1 itself runs the CPU's own kernels on every core). "all" is
+#                  CORE in stage 2 (the sanitizer build's suite runs under it, on one thread)
+#                  and, with its THREADS, for the entries that stage leaves out (label heavy)
+#                  after stage 1's suite; each further one after stage 1's suite, every numeric
+#                  entry. A kernel this CPU cannot run is skipped with a line. Default
+#                  "Prescott:2": the oldest kernels; two threads for the heavy entries, the large
+#                  problems whose products OpenBLAS splits over threads (stage 1's suite runs the
+#                  CPU's own kernels on one thread, as stage 2's). "all" is
 #                  "Prescott:1 Prescott:2 Haswell:1 Haswell:2 Zen:1 Zen:2 SkylakeX:1 SkylakeX:2";
 #                  "none" runs no rerun (stage 2 then on the CPU's own kernels, one thread). An
 #                  assertion that holds under one kernel and fails under another depends on
@@ -22,7 +24,7 @@
 #                  kernels").
 set -eu
 cd "$(dirname "$0")/.."
-kernels="Prescott:1"
+kernels="Prescott:2"
 while [ $# -gt 0 ]; do
   case "$1" in
     --kernels) [ $# -ge 2 ] || { echo "run-tests: --kernels needs a value" >&2; exit 2; }; kernels=$2; shift 2 ;;
@@ -33,7 +35,11 @@ done
 [ "$kernels" = none ] && kernels=""
 jobs=2
 log=$(mktemp)
-trap 'rm -f "$log"' EXIT
+sanitizer_log=$(mktemp)
+sanitizer_pid=""
+# On any exit, a sanitizer build still running beside stage 1 (below) stops too, its compilers
+# with it (it runs in a process group of its own).
+trap 'rm -f "$log" "$sanitizer_log"; [ -z "$sanitizer_pid" ] || kill -- "-$sanitizer_pid" 2>/dev/null || true' EXIT
 passed=0
 started=$(date +%s)
 stage_started=$started
@@ -121,44 +127,7 @@ for kernel in $kernels; do
   esac
 done
 
-echo "== 1/3 Release build and tests"
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
-cmake --build build -j$jobs
-run_ctest build
-# The numeric entries under other BLAS kernels and thread counts: every number the suite asserts
-# must hold whichever kernel rounded it. Left out: the bad-input cases (label input: words and
-# exit codes), the checks of the source tree and of the installed package, and the large cases
-# (the smaller ones run the same code). The first kernel of the list is the sanitizer stage's
-# (stage 2 runs every numeric entry but the `heavy` ones, in its own build, whose -O1 rounds
-# differently again), so here it reruns only the `heavy` entries; each further kernel reruns
-# them all. Stage 2 under the oldest kernels instead of a third run of most of the suite: 101 s
-# of reruns in CI instead of about 280 (docs/extremes.md, "Floating-point kernels").
-sanitizer_core=""
-sanitizer_threads=1
-first=1
-for kernel in $kernels; do
-  core=${kernel%:*}
-  threads=${kernel#*:}
-  if ! cpu_runs "$core"; then
-    echo "run-tests: this CPU cannot run OpenBLAS's $core kernels: skipped"
-    first=0
-    continue
-  fi
-  if [ $first = 1 ]; then
-    first=0
-    sanitizer_core=$core
-    sanitizer_threads=$threads
-    echo "== 1/3 the heavy numeric entries again with OPENBLAS_CORETYPE=$core OPENBLAS_NUM_THREADS=$threads" \
-      "(stage 2 runs the others so)"
-    OPENBLAS_CORETYPE=$core OPENBLAS_NUM_THREADS=$threads run_ctest build -L heavy -LE 'large|sources|input|install'
-    continue
-  fi
-  echo "== 1/3 the numeric entries again with OPENBLAS_CORETYPE=$core OPENBLAS_NUM_THREADS=$threads"
-  OPENBLAS_CORETYPE=$core OPENBLAS_NUM_THREADS=$threads run_ctest build -LE 'large|sources|input|install'
-done
-stage_done 1
-
-echo "== 2/3 AddressSanitizer + UndefinedBehaviorSanitizer build (clang) and tests"
+# Stage 2's build: AddressSanitizer + UndefinedBehaviorSanitizer, with clang, in build-asan/.
 # Clang rather than GCC: a batch of the tests compiles in 39 s instead of 65, and its
 # UndefinedBehaviorSanitizer checks more (-fsanitize=function found the plugins' entry points
 # called through a pointer of another type). -g1: line tables, so reports still name file and
@@ -185,18 +154,75 @@ echo "== 2/3 AddressSanitizer + UndefinedBehaviorSanitizer build (clang) and tes
 # includes, the API reference), which a sanitizer adds nothing to, and the test cases tagged
 # [heavy] (CONTACTQP_SKIP_HEAVY_TESTS): accuracy studies on meshes of 1e4-1e5 DOFs whose code
 # paths smaller cases run here too, and which the sanitizers make 10-20 times slower.
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DCONTACTQP_TEST_COMPILE_OPTIONS=-O1 \
+#
+# It starts now, beside stage 1, at the lowest priority (nice 19, in a process group of its own):
+# it takes the CPU time stage 1 leaves idle (the suite kept both cores 183 % busy, the Release
+# build 187 %: short tests, process starts, waits on files and on mpirun), and stage 1 keeps
+# nearly all of the cores it would have had. What the build has left when stage 1 ends runs then
+# on both cores. Its output is shown at the start of stage 2.
+setsid nice -n 19 sh -c "cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO='-O2 -g1 -DNDEBUG' -DCONTACTQP_TEST_COMPILE_OPTIONS=-O1 \
   -DCONTACTQP_SANITIZE=address,undefined \
   -DCONTACTQP_BUILD_BENCHMARKS=OFF -DCONTACTQP_BUILD_PYTHON=OFF -DCONTACTQP_WITH_PETSC=ON \
-  -DCONTACTQP_SKIP_HEAVY_TESTS=ON -DCONTACTQP_BUILD_FUZZER=ON
-cmake --build build-asan -j$jobs
+  -DCONTACTQP_SKIP_HEAVY_TESTS=ON -DCONTACTQP_BUILD_FUZZER=ON && cmake --build build-asan -j$jobs" \
+  > "$sanitizer_log" 2>&1 &
+sanitizer_pid=$!
+
+echo "== 1/3 Release build and tests (the sanitizer build beside it, at the lowest priority)"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j$jobs
+# One BLAS thread: beside another test on the other core, OpenBLAS's idle threads spin in
+# sched_yield between calls, CPU time the suite and the sanitizer build (beside it) pay. The
+# suite took 814 s of CPU with one thread and about 905 s with two (183 % of its 495 s in CI);
+# the rerun of the heavy entries below runs OpenBLAS on several threads.
+OPENBLAS_NUM_THREADS=1 run_ctest build
+# The numeric entries under other BLAS kernels and thread counts: every number the suite asserts
+# must hold whichever kernel rounded it. Left out: the bad-input cases (label input: words and
+# exit codes), the checks of the source tree and of the installed package, and the large cases
+# (the smaller ones run the same code). The first kernel of the list is the sanitizer stage's
+# (stage 2 runs every numeric entry but the `heavy` ones, in its own build, whose -O1 rounds
+# differently again), so here it reruns only the `heavy` entries; each further kernel reruns
+# them all. Stage 2 under the oldest kernels instead of a third run of most of the suite: 101 s
+# of reruns in CI instead of about 280 (docs/extremes.md, "Floating-point kernels").
+sanitizer_core=""
+sanitizer_threads=1
+first=1
+for kernel in $kernels; do
+  core=${kernel%:*}
+  threads=${kernel#*:}
+  if ! cpu_runs "$core"; then
+    echo "run-tests: this CPU cannot run OpenBLAS's $core kernels: skipped"
+    first=0
+    continue
+  fi
+  if [ $first = 1 ]; then
+    first=0
+    sanitizer_core=$core
+    echo "== 1/3 the heavy numeric entries again with OPENBLAS_CORETYPE=$core OPENBLAS_NUM_THREADS=$threads" \
+      "(stage 2 runs the others so)"
+    OPENBLAS_CORETYPE=$core OPENBLAS_NUM_THREADS=$threads run_ctest build -L heavy -LE 'large|sources|input|install'
+    continue
+  fi
+  echo "== 1/3 the numeric entries again with OPENBLAS_CORETYPE=$core OPENBLAS_NUM_THREADS=$threads"
+  OPENBLAS_CORETYPE=$core OPENBLAS_NUM_THREADS=$threads run_ctest build -LE 'large|sources|input|install'
+done
+stage_done 1
+
+echo "== 2/3 AddressSanitizer + UndefinedBehaviorSanitizer tests (clang)"
+# The build started beside stage 1 (above); what it has left runs now, on both cores.
+status=0
+wait "$sanitizer_pid" || status=$?
+sanitizer_pid=""
+cat "$sanitizer_log"
+[ $status -eq 0 ] || { echo "run-tests: the sanitizer build failed (exit $status)" >&2; exit 1; }
+echo "run-tests: the sanitizer build ended $(($(date +%s) - started)) s after the start"
 # Leaks are reported at exit and fail the test; tools/lsan.supp names the few that are
 # third-party libraries' own (see the file). OpenBLAS runs the first kernel of --kernels (above;
-# by default Prescott's, one thread). One thread also when none is given: OpenBLAS (not
-# instrumented, and run with every core in stage 1) keeps its idle threads spinning in
-# sched_yield between calls, so two tests side by side on two cores each fed a spinning thread:
-# a sanitized Hertz sphere took 15.3 s of CPU with two threads and 11.4 s with one.
+# by default Prescott's), always on one thread: OpenBLAS (not instrumented) keeps its idle
+# threads spinning in sched_yield between calls, so two tests side by side on two cores each fed
+# a spinning thread: a sanitized Hertz sphere took 15.3 s of CPU with two threads and 11.4 s with
+# one.
 if [ -n "$sanitizer_core" ]; then
   echo "run-tests: stage 2 runs with OPENBLAS_CORETYPE=$sanitizer_core OPENBLAS_NUM_THREADS=$sanitizer_threads"
   export OPENBLAS_CORETYPE=$sanitizer_core
