@@ -418,8 +418,8 @@ TEST_CASE("the CLI refuses a free body with exit 2 and one line, before any fact
   // The whole disc with a sideways traction that no row against the plane below can stop; a
   // coarse contact zone (0.26 s a run instead of 1.8 s, in CI for every backend, sanitized too):
   // the refusal comes before anything the mesh's size changes.
-  std::ofstream(scene) << patched_scene(
-      "scenes/hertz.json", R"({"body": {"symmetry": false, "mesh": {"contact_size": 0.02}},
+  std::ofstream(scene) << patched_scene("scenes/hertz.json",
+                                        R"({"body": {"symmetry": false, "mesh": {"contact_size": 0.02}},
                                "load": [{"type": "displacement", "boundary": "top",
                                "value": [null, -0.016]}, {"type": "traction", "boundary": "top", "value": [0.01, 0]}]})");
   for (Backend backend : available_backends()) {
