@@ -11,11 +11,13 @@
 # Options:
 #   --kernels "CORE:THREADS ..."  run the numeric entries again under each OpenBLAS kernel CORE
 #                  (OPENBLAS_CORETYPE) with THREADS BLAS threads (OPENBLAS_NUM_THREADS): the first
-#                  in stage 2 (the sanitizer build's suite runs under it) and, for the entries
-#                  that stage leaves out (label heavy), after stage 1's suite; each further one
-#                  after stage 1's suite, every numeric entry. A kernel this CPU cannot run is
-#                  skipped with a line. Default "Prescott:1" (the oldest kernels, one thread:
-#                  stage 1 itself runs the CPU's own kernels on every core). "all" is
+#                  CORE in stage 2 (the sanitizer build's suite runs under it, on one thread)
+#                  and, with its THREADS, for the entries that stage leaves out (label heavy)
+#                  after stage 1's suite; each further one after stage 1's suite, every numeric
+#                  entry. A kernel this CPU cannot run is skipped with a line. Default
+#                  "Prescott:2": the oldest kernels; two threads for the heavy entries, the large
+#                  problems whose products OpenBLAS splits over threads (stage 1's suite runs the
+#                  CPU's own kernels on one thread, as stage 2's). "all" is
 #                  "Prescott:1 Prescott:2 Haswell:1 Haswell:2 Zen:1 Zen:2 SkylakeX:1 SkylakeX:2";
 #                  "none" runs no rerun (stage 2 then on the CPU's own kernels, one thread). An
 #                  assertion that holds under one kernel and fails under another depends on
@@ -23,7 +25,7 @@
 #                  kernels").
 set -eu
 cd "$(dirname "$0")/.."
-kernels="Prescott:1"
+kernels="Prescott:2"
 while [ $# -gt 0 ]; do
   case "$1" in
     --kernels) [ $# -ge 2 ] || { echo "run-tests: --kernels needs a value" >&2; exit 2; }; kernels=$2; shift 2 ;;
@@ -174,7 +176,12 @@ sanitizer_pid=$!
 echo "== 1/3 Release build and tests (the sanitizer build beside it, at the lowest priority)"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j$jobs
-run_ctest build
+# One BLAS thread: beside another test on the other core, OpenBLAS's idle threads spin in
+# sched_yield between calls, CPU time the suite and the sanitizer build (beside it) pay. The
+# suite took 814 s of CPU with one thread and about 905 s with two (183 % of its 495 s in CI);
+# in CI, with the sanitizer build beside it, 477 s with one and 549 s with two. The rerun of the
+# heavy entries below runs OpenBLAS on several threads.
+OPENBLAS_NUM_THREADS=1 run_ctest build
 # The numeric entries under other BLAS kernels and thread counts: every number the suite asserts
 # must hold whichever kernel rounded it. Left out: the bad-input cases (label input: words and
 # exit codes), the checks of the source tree and of the installed package, and the large cases
@@ -197,7 +204,6 @@ for kernel in $kernels; do
   if [ $first = 1 ]; then
     first=0
     sanitizer_core=$core
-    sanitizer_threads=$threads
     echo "== 1/3 the heavy numeric entries again with OPENBLAS_CORETYPE=$core OPENBLAS_NUM_THREADS=$threads" \
       "(stage 2 runs the others so)"
     OPENBLAS_CORETYPE=$core OPENBLAS_NUM_THREADS=$threads run_ctest build -L heavy -LE 'large|sources|input|install'
@@ -218,10 +224,10 @@ cat "$sanitizer_log"
 echo "run-tests: the sanitizer build ended $(($(date +%s) - started)) s after the start"
 # Leaks are reported at exit and fail the test; tools/lsan.supp names the few that are
 # third-party libraries' own (see the file). OpenBLAS runs the first kernel of --kernels (above;
-# by default Prescott's, one thread). One thread also when none is given: OpenBLAS (not
-# instrumented, and run with every core in stage 1) keeps its idle threads spinning in
-# sched_yield between calls, so two tests side by side on two cores each fed a spinning thread:
-# a sanitized Hertz sphere took 15.3 s of CPU with two threads and 11.4 s with one.
+# by default Prescott's), always on one thread: OpenBLAS (not instrumented) keeps its idle
+# threads spinning in sched_yield between calls, so two tests side by side on two cores each fed
+# a spinning thread: a sanitized Hertz sphere took 15.3 s of CPU with two threads and 11.4 s with
+# one.
 if [ -n "$sanitizer_core" ]; then
   echo "run-tests: stage 2 runs with OPENBLAS_CORETYPE=$sanitizer_core OPENBLAS_NUM_THREADS=$sanitizer_threads"
   export OPENBLAS_CORETYPE=$sanitizer_core
